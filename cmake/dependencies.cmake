@@ -1,0 +1,13 @@
+# Every third-party package comes from Debian (tools/setup installs them).
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+find_package(nlohmann_json 3.10 REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(spdlog REQUIRED)
+find_package(assimp 5.2 REQUIRED CONFIG)
+if(PBM_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+endif()
+if(PBM_BUILD_BENCH)
+  find_package(Bullet REQUIRED)
+  find_package(benchmark REQUIRED)
+endif()
