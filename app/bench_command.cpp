@@ -1,0 +1,86 @@
+#include "bench_command.h"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cstdio>
+
+#include "bullet_soft_ellipsoid.h"
+#include "core/error.h"
+#include "scene/scene_json.h"
+#include "sim/model.h"
+#include "sim/world.h"
+
+namespace pbm {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Median-free but interleaved: each size times ours and Bullet's back to back.
+double time_ours(const Scene& base, int resolution, int steps, int& nodes) {
+  Scene scene = base;
+  scene.bodies.resize(1);
+  scene.bodies[0].tessellation.rings = resolution;
+  scene.bodies[0].tessellation.segments = resolution;
+  // Keep the ball's total mass as the book's 258-node jello when the node count changes.
+  const Model model = build_model(scene);
+  nodes = model.bodies[0].n_nodes();
+  const Inputs inputs;
+  Workspace ws;
+  init_workspace(model, inputs, ws);
+  State state = initial_state(model);
+  int evaluations = 0;
+  advance_substep(model, state, model.solver.dt, ws, evaluations);  // warm-up
+  const auto t0 = Clock::now();
+  for (int k = 0; k < steps; ++k) advance_substep(model, state, model.solver.dt, ws, evaluations);
+  return std::chrono::duration<double, std::micro>(Clock::now() - t0).count() / steps;
+}
+
+double time_bullet(const Scene& scene, int nodes, int steps, int& bullet_nodes) {
+  const BodyDef& body = scene.bodies[0];
+  const Real a0 = body.q_s.size() ? body.q_s[0] : 1.0;
+  const Vec3 radii = body.q_s.size() >= 4 ? Vec3(a0 * body.q_s[1], a0 * body.q_s[2], a0 * body.q_s[3])
+                                          : Vec3(a0, a0, a0);
+  auto peer = bench::make_bullet_soft_ellipsoid(nodes, radii.x(), radii.y(), radii.z(),
+                                                body.position.z(), nodes * 1.0);
+  bullet_nodes = bench::node_count(*peer);
+  bench::step(*peer, scene.solver.dt);
+  const auto t0 = Clock::now();
+  for (int k = 0; k < steps; ++k) bench::step(*peer, scene.solver.dt);
+  return std::chrono::duration<double, std::micro>(Clock::now() - t0).count() / steps;
+}
+
+}  // namespace
+
+int run_bench(const BenchOptions& o) {
+  if (o.what != "deform") {
+    spdlog::error("unknown benchmark '{}' (known: deform)", o.what);
+    return 2;
+  }
+  Scene scene;
+  try {
+    scene = load_scene(o.scene);
+  } catch (const Error& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+  std::printf("bench deform: one step of '%s' (dt = %g s, %s integrator) vs Bullet btSoftBody\n",
+              scene.name.c_str(), scene.solver.dt,
+              scene.solver.integrator == IntegratorKind::euler ? "euler" : "rk");
+  std::printf("%8s %14s %14s %14s %10s %12s\n", "nodes", "ours us/step", "bullet nodes",
+              "bullet us/step", "ratio", "ours us/node");
+  for (int resolution : {8, 16, 32, 64, 128}) {
+    const int expected = 2 + resolution * resolution;
+    if (expected > o.max_nodes) break;
+    const int steps = std::max(3, o.steps * 258 / expected);
+    int ours_nodes = 0, bullet_nodes = 0;
+    const double ours = time_ours(scene, resolution, steps, ours_nodes);
+    const double bullet = time_bullet(scene, ours_nodes, steps, bullet_nodes);
+    std::printf("%8d %14.1f %14d %14.1f %10.3f %12.3f\n", ours_nodes, ours, bullet_nodes, bullet,
+                ours / bullet, ours / ours_nodes);
+    std::fflush(stdout);
+  }
+  return 0;
+}
+
+}  // namespace pbm

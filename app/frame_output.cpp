@@ -1,0 +1,74 @@
+#include "frame_output.h"
+
+#include <nlohmann/json.hpp>
+
+namespace pbm {
+namespace {
+
+void append_number(std::string& out, double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  out += buf;
+}
+
+void append_array(std::string& out, const Eigen::Ref<const VecX>& x) {
+  out += '[';
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    if (i) out += ',';
+    append_number(out, x[i]);
+  }
+  out += ']';
+}
+
+}  // namespace
+
+std::string state_json_line(const Model& model, const State& state, long frame) {
+  std::string out = "{\"frame\":" + std::to_string(frame) + ",\"time\":";
+  append_number(out, state.time);
+  out += ",\"bodies\":[";
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    const BodyModel& body = model.bodies[b];
+    if (b) out += ',';
+    out += "{\"name\":" + nlohmann::json(body.name).dump() + ",\"q\":";
+    append_array(out, state.q.segment(body.q_offset, body.q_size));
+    out += ",\"v\":";
+    append_array(out, state.v.segment(body.v_offset, body.v_size));
+    out += '}';
+  }
+  out += "]}\n";
+  return out;
+}
+
+std::string frame_stats_json(const Model& model, const FrameStats& s, long frame) {
+  nlohmann::json j;
+  j["frame"] = frame;
+  j["time"] = s.time;
+  j["wall_seconds"] = s.wall_seconds;
+  j["substeps"] = s.substeps;
+  j["retries"] = s.retries;
+  j["evaluations"] = s.evaluations;
+  j["kinetic_energy"] = s.kinetic;
+  j["elastic_energy"] = s.elastic;
+  j["potential_energy"] = s.potential;
+  j["min_obstacle_distance"] = model.obstacles.empty() ? nlohmann::json(nullptr)
+                                                       : nlohmann::json(s.min_distance);
+  j["contact_nodes"] = s.contacts;
+  nlohmann::json stages;
+  for (int k = 0; k < static_cast<int>(StepStage::count); ++k) {
+    stages[stage_name(static_cast<StepStage>(k))] = s.stage_seconds[k];
+  }
+  j["stage_seconds"] = stages;
+  nlohmann::json bodies = nlohmann::json::array();
+  for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+    const BodyFrameStats& bs = s.bodies[b];
+    bodies.push_back({{"name", model.bodies[b].name},
+                      {"q_s", std::vector<double>(bs.q_s.data(), bs.q_s.data() + bs.q_s.size())},
+                      {"position", {bs.position.x(), bs.position.y(), bs.position.z()}},
+                      {"kinetic_energy", bs.kinetic},
+                      {"elastic_energy", bs.elastic}});
+  }
+  j["bodies"] = bodies;
+  return j.dump();
+}
+
+}  // namespace pbm

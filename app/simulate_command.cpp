@@ -1,0 +1,157 @@
+#include "simulate_command.h"
+
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.h"
+#include "frame_output.h"
+#include "mesh_export.h"
+#include "progress_bar.h"
+#include "scene/scene_json.h"
+#include "sim/model.h"
+#include "sim/world.h"
+
+namespace pbm {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Opens an output file up front, so a bad path fails before any simulation (exit 2).
+std::ofstream open_output(const std::string& path, const std::string& option) {
+  std::error_code ec;
+  const fs::path parent = fs::path(path).parent_path();
+  if (!parent.empty()) fs::create_directories(parent, ec);
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) throw Error(path, "", "cannot write " + option + " file");
+  return out;
+}
+
+std::vector<MeshData> body_meshes(const Model& model, const Workspace& ws) {
+  std::vector<MeshData> meshes;
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    MeshData mesh;
+    mesh.name = model.bodies[b].name;
+    mesh.positions = ws.bodies[b].x;
+    mesh.triangles = model.bodies[b].tessellation.triangles;
+    meshes.push_back(std::move(mesh));
+  }
+  return meshes;
+}
+
+void apply_overrides(const SimulateOptions& o, Scene& scene) {
+  if (o.dt) {
+    if (!(*o.dt > 0) || !std::isfinite(*o.dt)) throw Error("", "--dt", "must be > 0");
+    scene.solver.dt = *o.dt;
+  }
+  if (o.tolerance) {
+    if (!(*o.tolerance > 0)) throw Error("", "--tolerance", "must be > 0");
+    scene.solver.tolerance = *o.tolerance;
+  }
+  if (o.integrator) {
+    if (*o.integrator == "euler") scene.solver.integrator = IntegratorKind::euler;
+    else if (*o.integrator == "rk4") scene.solver.integrator = IntegratorKind::rk4;
+    else if (*o.integrator == "rk45") scene.solver.integrator = IntegratorKind::rk45;
+    else throw Error("", "--integrator", "must be euler, rk4 or rk45");
+  }
+}
+
+}  // namespace
+
+int run_validate(const std::string& scene_path) {
+  try {
+    const Scene scene = load_scene(scene_path);
+    const Model model = build_model(scene);
+    int nodes = 0;
+    for (const BodyModel& b : model.bodies) nodes += b.n_nodes();
+    spdlog::info("{}: valid ({} bodies, {} nodes, {} obstacles, {} tracks)", scene_path,
+                 model.bodies.size(), nodes, model.obstacles.size(), model.tracks.size());
+    return 0;
+  } catch (const Error& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+}
+
+int run_simulate(const SimulateOptions& o) {
+  Model model;
+  long n_frames = 0;
+  std::ofstream states, stats;
+  std::optional<MeshFormat> mesh_format;
+  try {
+    Scene scene = load_scene(o.scene);
+    apply_overrides(o, scene);
+    model = build_model(scene);
+    if (o.frames && o.seconds) throw Error("", "--frames", "give --frames or --seconds, not both");
+    if (o.frames) {
+      if (*o.frames < 0 || *o.frames > 10'000'000) throw Error("", "--frames", "must be in [0, 1e7]");
+      n_frames = *o.frames;
+    } else {
+      const double seconds = o.seconds ? *o.seconds : model.solver.duration;
+      if (!(seconds >= 0) || seconds > 1e6) throw Error("", "--seconds", "must be in [0, 1e6]");
+      n_frames = std::lround(seconds * model.solver.fps);
+    }
+    if (!o.states_out.empty()) states = open_output(o.states_out, "--out");
+    if (!o.stats_out.empty()) stats = open_output(o.stats_out, "--stats");
+    if (!o.mesh_dir.empty()) {
+      mesh_format = parse_mesh_format(o.mesh_format);
+      if (!mesh_format) throw Error("", "--mesh-format", "must be obj, gltf or ply");
+      std::error_code ec;
+      fs::create_directories(o.mesh_dir, ec);
+      if (ec || !fs::is_directory(o.mesh_dir)) {
+        throw Error(o.mesh_dir, "", "cannot create --mesh-dir: " + ec.message());
+      }
+    }
+  } catch (const Error& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+
+  const Inputs inputs;
+  Workspace ws;
+  init_workspace(model, inputs, ws);
+  State state = initial_state(model);
+  FrameStats stats0;
+  measure_state(model, state, ws, stats0);
+  bool first_stats = true;
+  auto emit = [&](long frame, const FrameStats& fs_) {
+    if (states) states << state_json_line(model, state, frame);
+    if (stats) {
+      stats << (first_stats ? "{\"scene\":" : ",\n");
+      if (first_stats) stats << nlohmann::json(model.scene.name).dump() << ",\"frames\":[\n";
+      stats << frame_stats_json(model, fs_, frame);
+      first_stats = false;
+    }
+    if (mesh_format) {
+      char name[64];
+      std::snprintf(name, sizeof name, "frame_%05ld%s", frame, mesh_format_extension(*mesh_format));
+      write_mesh((fs::path(o.mesh_dir) / name).string(), *mesh_format, body_meshes(model, ws));
+    }
+  };
+  int code = 0;
+  ProgressBar bar("simulate", n_frames);
+  try {
+    emit(0, stats0);
+    for (long f = 1; f <= n_frames; ++f) {
+      FrameResult r = advance_frame(model, state, ws);
+      if (!r.ok) {
+        spdlog::error("{}: simulation failed at frame {}: {}", o.scene, f, r.message);
+        code = 1;
+        break;
+      }
+      emit(f, r.stats);
+      bar.update(f, "t=" + std::to_string(state.time).substr(0, 6) + "s");
+    }
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    code = 2;
+  }
+  bar.finish();
+  if (stats) stats << (first_stats ? "{\"frames\":[" : "") << "\n]}\n";
+  return code;
+}
+
+}  // namespace pbm

@@ -1,0 +1,221 @@
+#include "collide/rigid_contact.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "collide/obstacle.h"
+#include "deform/reference_shape.h"
+#include "sim/state.h"
+
+namespace pbm {
+namespace {
+
+// Below this tangential speed Coulomb friction is scaled down linearly, so a node at rest is not
+// pushed back and forth by the sign of a rounding error.
+constexpr Real kSlipVelocity = 1e-3;  // [m/s]
+
+// Positions only (no Jacobian): the cheap pass that detects penetration.
+void compute_node_positions(const BodyModel& body, const Eigen::Ref<const VecX>& q,
+                            BodyWorkspace& ws) {
+  const Vec3 c = q.segment<3>(0);
+  ws.R = rotation_from_quaternion(q.segment<4>(3));
+  if (body.n_s > 0) ws.q_s = q.segment(7, body.n_s);
+  for (int i = 0; i < body.n_nodes(); ++i) {
+    Vec3 s;
+    if (body.n_s > 0) {
+      const Vec2& uv = body.tessellation.uv[i];
+      evaluate_reference_shape(body.shape, ws.q_s, uv.x(), uv.y(), 1.0, s, nullptr);
+    } else {
+      s = body.s_fixed[i];
+    }
+    Vec3 p = s;
+    if (body.has_local) p += q.segment<3>(7 + body.n_s + 3 * i);
+    ws.s[i] = s;
+    ws.p[i] = p;
+    ws.x[i] = c + ws.R * p;
+  }
+}
+
+// Deepest obstacle for x: returns the signed distance and sets the obstacle index and normal.
+Real deepest(const Model& model, const Vec3& x, int& which, Vec3& normal) {
+  Real best = 1e300;
+  which = -1;
+  for (int o = 0; o < static_cast<int>(model.obstacles.size()); ++o) {
+    Vec3 n;
+    const Real d = signed_distance(model.obstacles[o], x, n);
+    if (d < best) {
+      best = d;
+      which = o;
+      normal = n;
+    }
+  }
+  return best;
+}
+
+Vec3 apply_P(const BodyModel& body, const BodyWorkspace& ws, int i, const VecX& g) {
+  Vec3 r = g.segment<3>(0) + g.segment<3>(3).cross(ws.p[i]);
+  if (body.n_s > 0) r.noalias() += ws.J.middleRows(3 * i, 3) * g.tail(body.n_s);
+  return r;
+}
+
+VecX apply_Pt(const BodyModel& body, const BodyWorkspace& ws, int i, const Vec3& y) {
+  VecX out(body.n_generalized());
+  out.segment<3>(0) = y;
+  out.segment<3>(3) = ws.p[i].cross(y);
+  if (body.n_s > 0) out.tail(body.n_s) = ws.J.middleRows(3 * i, 3).transpose() * y;
+  return out;
+}
+
+// Sequential impulses on nu_g for a body without q_d (velocity-level contact).
+void resolve_generalized_impulses(const Model& model, const BodyModel& body,
+                                  const std::vector<int>& nodes, Eigen::Ref<VecX> v,
+                                  BodyWorkspace& ws) {
+  const int k = body.n_generalized();
+  const Mat3 Rt = ws.R.transpose();
+  // nu_g in the body frame.
+  VecX nu(k);
+  nu.segment<3>(0) = Rt * v.segment<3>(0);
+  nu.segment(3, k - 3) = v.segment(3, k - 3);
+  std::vector<Real> j_normal(nodes.size(), 0.0);
+  for (int iter = 0; iter < 16; ++iter) {
+    for (std::size_t c = 0; c < nodes.size(); ++c) {
+      const int i = nodes[c];
+      int o = -1;
+      Vec3 n;
+      deepest(model, ws.x[i], o, n);
+      const ObstacleModel& obs = model.obstacles[o];
+      const Vec3 n_b = Rt * n;
+      const Vec3 vel = apply_P(body, ws, i, nu);  // body-frame node velocity
+      const VecX Pn = apply_Pt(body, ws, i, n_b);
+      const VecX MinvPn = ws.A_ldlt.solve(Pn);
+      const Real w_n = Pn.dot(MinvPn);
+      if (!(w_n > 0)) continue;
+      // Inelastic normal impulse, accumulated and clamped to push only.
+      const Real jn_new = std::max(0.0, j_normal[c] - vel.dot(n_b) / w_n);
+      const Real dj = jn_new - j_normal[c];
+      j_normal[c] = jn_new;
+      nu += dj * MinvPn;
+      // Coulomb (5.12) at the impulse level: the tangential impulse is bounded by beta_f j_n.
+      const Vec3 vel2 = apply_P(body, ws, i, nu);
+      Vec3 vt = vel2 - vel2.dot(n_b) * n_b;
+      const Real speed = vt.norm();
+      if (speed > 1e-12 && obs.friction > 0) {
+        const Vec3 t = vt / speed;
+        const VecX Pt = apply_Pt(body, ws, i, t);
+        const VecX MinvPt = ws.A_ldlt.solve(Pt);
+        const Real w_t = Pt.dot(MinvPt);
+        if (w_t > 0) {
+          const Real jt = std::min(speed / w_t, obs.friction * dj > 0 ? obs.friction * jn_new : 0.0);
+          nu -= jt * MinvPt;
+        }
+      }
+    }
+  }
+  v.segment<3>(0) = ws.R * nu.segment<3>(0);
+  v.segment(3, k - 3) = nu.segment(3, k - 3);
+}
+
+}  // namespace
+
+int add_contact_forces(const Model& model, const BodyModel& body, BodyWorkspace& ws) {
+  int touching = 0;
+  for (int i = 0; i < body.n_nodes(); ++i) {
+    ws.contact[i] = -1;
+    if (!body.has_local) continue;
+    int o = -1;
+    Vec3 n;
+    if (model.obstacles.empty() || deepest(model, ws.x[i], o, n) > kContactBand) continue;
+    ws.contact[i] = o;
+    ++touching;
+    const ObstacleModel& obs = model.obstacles[o];
+    // (5.10)-(5.11): the node's elastic force, in the world frame, pushes back along n.
+    const Vec3 f_i = ws.R * ws.K_q.segment<3>(3 * i);
+    const Vec3 f_n = obs.elasticity * std::max(0.0, f_i.dot(n)) * n;
+    // (5.12) with the slip speed regularized near zero.
+    const Vec3 v = ws.x_dot[i];
+    const Vec3 v_p = v - v.dot(n) * n;
+    const Real speed = v_p.norm();
+    Vec3 f_c = Vec3::Zero();
+    if (speed > 0) f_c = -obs.friction * f_n.norm() * v_p / std::max(speed, kSlipVelocity);
+    ws.force[i] += f_n + f_c;
+  }
+  return touching;
+}
+
+ContactResolution resolve_penetrations(const Model& model, const BodyModel& body,
+                                       Eigen::Ref<VecX> q, Eigen::Ref<VecX> v, BodyWorkspace& ws) {
+  ContactResolution result;
+  if (model.obstacles.empty()) {
+    compute_node_positions(body, q, ws);
+    return result;
+  }
+  compute_node_positions(body, q, ws);
+  std::vector<int> nodes;
+  for (int i = 0; i < body.n_nodes(); ++i) {
+    int o;
+    Vec3 n;
+    if (deepest(model, ws.x[i], o, n) < 0) nodes.push_back(i);
+  }
+  result.penetrating_nodes = static_cast<int>(nodes.size());
+  if (!nodes.empty()) {
+    compute_body_kinematics(body, q, v, ws);
+    factor_generalized_mass(body, ws);
+    if (body.has_local) {
+      const Mat3 Rt = ws.R.transpose();
+      const int d_q = 7 + body.n_s, d_v = 6 + body.n_s;
+      for (int i : nodes) {
+        // Repeat for a node inside two obstacles (a corner): each pass leaves one of them.
+        for (int pass = 0; pass < 4; ++pass) {
+          int o;
+          Vec3 n;
+          const Real phi = deepest(model, ws.x[i], o, n);
+          if (phi >= kProjectionMargin * 0.5) break;
+          const Vec3 dx = (kProjectionMargin - phi) * n;  // step 1: project along n
+          q.segment<3>(d_q + 3 * i) += Rt * dx;             // step 2: the new d
+          ws.p[i] += Rt * dx;
+          ws.x[i] += dx;
+          const Real vn = ws.x_dot[i].dot(n);
+          if (vn < 0) {
+            v.segment<3>(d_v + 3 * i) -= vn * (Rt * n);
+            ws.x_dot[i] -= vn * n;
+          }
+        }
+      }
+      resplit_velocities(body, q, v, ws);
+    } else {
+      resolve_generalized_impulses(model, body, nodes, v, ws);
+      // Position: translate c out of each obstacle by its deepest penetration.
+      for (int pass = 0; pass < 8; ++pass) {
+        Real worst = 0;
+        Vec3 push = Vec3::Zero();
+        for (int i = 0; i < body.n_nodes(); ++i) {
+          int o;
+          Vec3 n;
+          const Real phi = deepest(model, ws.x[i], o, n);
+          if (phi < worst) {
+            worst = phi;
+            push = (kProjectionMargin - phi) * n;
+          }
+        }
+        if (worst >= 0) break;
+        q.segment<3>(0) += push;
+        for (Vec3& x : ws.x) x += push;
+      }
+    }
+  }
+  result.min_distance = min_obstacle_distance(model, ws);
+  return result;
+}
+
+Real min_obstacle_distance(const Model& model, const BodyWorkspace& ws) {
+  Real best = 1e300;
+  for (const Vec3& x : ws.x) {
+    for (const ObstacleModel& o : model.obstacles) {
+      Vec3 n;
+      best = std::min(best, signed_distance(o, x, n));
+    }
+  }
+  return best;
+}
+
+}  // namespace pbm

@@ -1,0 +1,252 @@
+#include "deform/body_dynamics.h"
+
+#include <cmath>
+
+#include "deform/reference_shape.h"
+#include "sim/state.h"
+
+namespace pbm {
+namespace {
+
+// Slices of a body's q and v (layout in sim/model.h).
+struct BodySlices {
+  int s_q, d_q;  // offsets of q_s and q_d in q
+  int s_v, d_v;  // offsets of q_s-dot and d-dot in v
+};
+BodySlices slices(const BodyModel& body) {
+  return {7, 7 + body.n_s, 6, 6 + body.n_s};
+}
+
+// P_i^T y for P_i = [I, -p~_i, J_i]: (y, p_i x y, J_i^T y).
+template <class Out>
+void add_Pt(const BodyModel& body, const BodyWorkspace& ws, int i, const Vec3& y, Out& out) {
+  out.template segment<3>(0) += y;
+  out.template segment<3>(3) += ws.p[i].cross(y);
+  if (body.n_s > 0) out.tail(body.n_s).noalias() += ws.J.middleRows(3 * i, 3).transpose() * y;
+}
+
+// P_i g for a k-vector g: g_c + g_omega x p_i + J_i g_s.
+Vec3 apply_P(const BodyModel& body, const BodyWorkspace& ws, int i, const VecX& g) {
+  Vec3 r = g.segment<3>(0) + g.segment<3>(3).cross(ws.p[i]);
+  if (body.n_s > 0) r.noalias() += ws.J.middleRows(3 * i, 3) * g.tail(body.n_s);
+  return r;
+}
+
+}  // namespace
+
+void resize_workspace(const BodyModel& body, BodyWorkspace& ws) {
+  const int n = body.n_nodes();
+  const int k = body.n_generalized();
+  ws.q_s.resize(body.n_shape);
+  ws.q_s_rest = body.q_s0;
+  ws.s.assign(n, Vec3::Zero());
+  ws.p.assign(n, Vec3::Zero());
+  ws.p_dot.assign(n, Vec3::Zero());
+  ws.a_vp.assign(n, Vec3::Zero());
+  ws.x.assign(n, Vec3::Zero());
+  ws.x_dot.assign(n, Vec3::Zero());
+  ws.force.assign(n, Vec3::Zero());
+  ws.contact.assign(n, -1);
+  ws.J.setZero(3 * n, body.n_s);
+  ws.J_node.setZero(3, body.n_shape);
+  ws.K_q.setZero(body.has_local ? 3 * n : 0);
+  ws.A.setZero(k, k);
+  ws.A_ldlt = Eigen::LDLT<MatX>(k);
+  ws.r_g.setZero(k);
+  ws.b.setZero(k);
+  ws.gamma.setZero(k);
+  ws.kinematics_valid = false;
+}
+
+void compute_body_kinematics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
+                             const Eigen::Ref<const VecX>& v, BodyWorkspace& ws) {
+  const int n = body.n_nodes();
+  const BodySlices sl = slices(body);
+  const Vec3 c = q.segment<3>(0);
+  ws.R = rotation_from_quaternion(q.segment<4>(3));
+  const Vec3 c_dot = v.segment<3>(0);
+  const Vec3 omega = v.segment<3>(3);
+  if (body.n_s > 0) {
+    ws.q_s = q.segment(sl.s_q, body.n_s);
+  } else {
+    ws.q_s = body.q_s_fixed;
+  }
+  const bool second = body.order == DynamicsOrder::second;
+  // J-dot q_s-dot by a second difference of s along q_s-dot; h keeps h*q_s-dot ~ 1e-4 so the
+  // truncation (h^2) and rounding (eps/h^2) errors both stay near 1e-8 relative.
+  VecX q_s_dot;
+  Real h = 0;
+  VecX q_plus, q_minus;
+  if (body.n_s > 0) {
+    q_s_dot = v.segment(sl.s_v, body.n_s);
+    const Real vmax = q_s_dot.cwiseAbs().maxCoeff();
+    if (second && vmax > 0) {
+      h = 1e-4 / vmax;
+      q_plus = ws.q_s + h * q_s_dot;
+      q_minus = ws.q_s - h * q_s_dot;
+    }
+  }
+  const Vec3 V = ws.R.transpose() * c_dot;
+  for (int i = 0; i < n; ++i) {
+    const Vec2& uv = body.tessellation.uv[i];
+    Vec3 jq = Vec3::Zero();
+    if (body.n_s > 0) {
+      evaluate_reference_shape(body.shape, ws.q_s, uv.x(), uv.y(), 1.0, ws.s[i], &ws.J_node);
+      ws.J.middleRows(3 * i, 3) = ws.J_node;
+      ws.p_dot[i].noalias() = ws.J_node * q_s_dot;
+      if (h > 0) {
+        Vec3 s_plus, s_minus;
+        evaluate_reference_shape(body.shape, q_plus, uv.x(), uv.y(), 1.0, s_plus, nullptr);
+        evaluate_reference_shape(body.shape, q_minus, uv.x(), uv.y(), 1.0, s_minus, nullptr);
+        jq = (s_plus - 2.0 * ws.s[i] + s_minus) / (h * h);
+      }
+    } else {
+      ws.s[i] = body.s_fixed[i];
+      ws.p_dot[i].setZero();
+    }
+    ws.p[i] = ws.s[i];
+    if (body.has_local) {
+      ws.p[i] += q.segment<3>(sl.d_q + 3 * i);
+      ws.p_dot[i] += v.segment<3>(sl.d_v + 3 * i);
+    }
+    ws.x[i] = c + ws.R * ws.p[i];
+    ws.x_dot[i] = ws.R * (V + omega.cross(ws.p[i]) + ws.p_dot[i]);
+    if (second) {
+      ws.a_vp[i] = omega.cross(omega.cross(ws.p[i])) + 2.0 * omega.cross(ws.p_dot[i]) + jq;
+    }
+  }
+  ws.kinematics_valid = true;
+}
+
+void compute_elastic_forces(const BodyModel& body, const Eigen::Ref<const VecX>& q,
+                            BodyWorkspace& ws) {
+  if (!body.has_local) return;
+  ws.K_q.setZero();
+  add_membrane_forces(body.tessellation, body.stiffness,
+                      q.segment(7 + body.n_s, 3 * body.n_nodes()), ws.K_q);
+}
+
+void factor_generalized_mass(const BodyModel& body, BodyWorkspace& ws) {
+  const int n = body.n_nodes();
+  const int ns = body.n_s;
+  // Blocks of (3.16) in the body frame, accumulated node by node.
+  Real m = 0;
+  Vec3 mp = Vec3::Zero();
+  Mat3 inertia = Mat3::Zero();
+  MatX mJ = MatX::Zero(3, ns), mpJ = MatX::Zero(3, ns), JtJ = MatX::Zero(ns, ns);
+  for (int i = 0; i < n; ++i) {
+    const Real mi = body.node_mass[i];
+    const Vec3& p = ws.p[i];
+    m += mi;
+    mp += mi * p;
+    inertia += mi * (p.squaredNorm() * Mat3::Identity() - p * p.transpose());
+    if (ns > 0) {
+      const auto Ji = ws.J.middleRows(3 * i, 3);
+      mJ.noalias() += mi * Ji;
+      mpJ.noalias() += mi * skew(p) * Ji;
+      JtJ.noalias() += mi * Ji.transpose() * Ji;
+    }
+  }
+  MatX& A = ws.A;
+  A.setZero();
+  A.block<3, 3>(0, 0) = m * Mat3::Identity();  // M_cc
+  A.block<3, 3>(0, 3) = -skew(mp);             // M_c theta: sum m (-p~)
+  A.block<3, 3>(3, 0) = skew(mp);
+  A.block<3, 3>(3, 3) = inertia;  // M_theta theta = sum m p~^T p~
+  if (ns > 0) {
+    A.block(0, 6, 3, ns) = mJ;  // M_cs
+    A.block(6, 0, ns, 3) = mJ.transpose();
+    A.block(3, 6, 3, ns) = mpJ;  // M_theta s = sum m p~ J
+    A.block(6, 3, ns, 3) = mpJ.transpose();
+    A.block(6, 6, ns, ns) = JtJ;  // M_ss
+    A.block(6, 6, ns, ns).diagonal().array() += body.parameter_inertia;
+  }
+  ws.A_ldlt.compute(A);
+}
+
+void solve_body_dynamics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
+                         const Eigen::Ref<const VecX>& v, BodyWorkspace& ws,
+                         Eigen::Ref<VecX> out) {
+  const int n = body.n_nodes();
+  const int ns = body.n_s;
+  const BodySlices sl = slices(body);
+  const bool second = body.order == DynamicsOrder::second;
+  const Mat3 Rt = ws.R.transpose();
+  ws.r_g.setZero();
+  ws.b.setZero();
+  for (int i = 0; i < n; ++i) {
+    Vec3 r = Rt * ws.force[i];  // f_i in the body frame (3.48)
+    if (second) r -= body.node_mass[i] * ws.a_vp[i];  // g_q (3.24)
+    add_Pt(body, ws, i, r, ws.r_g);
+    if (body.has_local) {
+      r -= ws.K_q.segment<3>(3 * i);
+      add_Pt(body, ws, i, r, ws.b);
+    }
+  }
+  if (ns > 0) {
+    // Global elastic force (3.33) and the damping of the parameter inertia.
+    const VecX q_s = q.segment(sl.s_q, ns);
+    ws.r_g.tail(ns) -= body.k_s.cwiseProduct(q_s - ws.q_s_rest);
+    if (second) ws.r_g.tail(ns) -= body.damping * body.parameter_inertia * v.segment(sl.s_v, ns);
+  }
+  // First-order bodies: nu M q-dot = f_q - K q (3.51); second-order: M alpha = rhs (3.13).
+  const Real scale = second ? 1.0 : 1.0 / body.damping;
+  VecX alpha = ws.A_ldlt.solve(ws.r_g) * scale;
+  // c-ddot (or c-dot) back to the world frame.
+  out.segment<3>(0) = ws.R * alpha.segment<3>(0);
+  out.segment<3>(3) = alpha.segment<3>(3);
+  if (ns > 0) out.segment(sl.s_v, ns) = alpha.tail(ns);
+  if (body.has_local) {
+    ws.gamma = ws.A_ldlt.solve(ws.b);
+    for (int i = 0; i < n; ++i) {
+      Vec3 r = Rt * ws.force[i] - ws.K_q.segment<3>(3 * i);
+      if (second) r -= body.node_mass[i] * ws.a_vp[i];
+      out.segment<3>(sl.d_v + 3 * i) = (r / body.node_mass[i] - apply_P(body, ws, i, ws.gamma)) * scale;
+    }
+  }
+}
+
+void resplit_velocities(const BodyModel& body, const Eigen::Ref<const VecX>& q, Eigen::Ref<VecX> v,
+                        BodyWorkspace& ws) {
+  (void)q;
+  if (!body.has_local) return;
+  const int n = body.n_nodes();
+  const BodySlices sl = slices(body);
+  ws.b.setZero();
+  for (int i = 0; i < n; ++i) {
+    add_Pt(body, ws, i, Vec3(body.node_mass[i] * v.segment<3>(sl.d_v + 3 * i)), ws.b);
+  }
+  // The parameter inertia's share of the q_s rows is not part of sum m P^T P.
+  ws.gamma = ws.A_ldlt.solve(ws.b);
+  v.segment<3>(0) += ws.R * ws.gamma.segment<3>(0);
+  v.segment<3>(3) += ws.gamma.segment<3>(3);
+  if (body.n_s > 0) v.segment(sl.s_v, body.n_s) += ws.gamma.tail(body.n_s);
+  for (int i = 0; i < n; ++i) v.segment<3>(sl.d_v + 3 * i) -= apply_P(body, ws, i, ws.gamma);
+}
+
+BodyEnergy compute_body_energy(const BodyModel& body, const Eigen::Ref<const VecX>& q,
+                               const Eigen::Ref<const VecX>& v, const Vec3& gravity,
+                               BodyWorkspace& ws) {
+  BodyEnergy e;
+  const int n = body.n_nodes();
+  const BodySlices sl = slices(body);
+  for (int i = 0; i < n; ++i) {
+    const Real m = body.node_mass[i];
+    e.kinetic += 0.5 * m * ws.x_dot[i].squaredNorm();
+    e.potential -= m * gravity.dot(ws.x[i]);
+    e.linear_momentum += m * ws.x_dot[i];
+    e.angular_momentum += m * ws.x[i].cross(ws.x_dot[i]);
+  }
+  if (body.n_s > 0) {
+    const auto q_s_dot = v.segment(sl.s_v, body.n_s);
+    e.kinetic += 0.5 * body.parameter_inertia * q_s_dot.squaredNorm();
+    const VecX dq = q.segment(sl.s_q, body.n_s) - ws.q_s_rest;
+    e.elastic += 0.5 * dq.dot(body.k_s.cwiseProduct(dq));
+  }
+  if (body.has_local) {
+    e.elastic += membrane_energy(body.tessellation, body.stiffness, q.segment(sl.d_q, 3 * n));
+  }
+  return e;
+}
+
+}  // namespace pbm

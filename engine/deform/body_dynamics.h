@@ -1,0 +1,99 @@
+// Lagrangian dynamics of one hybrid deformable body (ch. 3) with lumped nodal masses (sec. 6.1).
+//
+// Kinematics (3.1)-(3.4), written in the body frame with P_i = [I, -p~_i, J_i] (3 x k, k = 6 + n_s):
+//   x_i = c + R p_i,  p_i = s(u_i; q_s) + d_i                                           (3.3)
+//   R^T x_i-dot = P_i nu_g + d_i-dot,  nu_g = (R^T c-dot, omega, q_s-dot)               (3.4)
+//   R^T x_i-ddot = P_i alpha + d_i-ddot + a_i,                                           (3.17)
+//   a_i = omega x (omega x p_i) + 2 omega x p_i-dot + J-dot_i q_s-dot                    (3.18)
+// (3.18) as printed omits J-dot q_s-dot; without it a body whose q_s moves does not conserve
+// momentum, so it is kept (computed by a second difference of s along q_s-dot).
+//
+// Mass matrix. With lumped masses at the nodes, M = sum m_i L_i^T L_i (3.14) is the arrowhead
+//   [ A    C ]   A = sum m_i P_i^T P_i (k x k: M_cc, M_c theta, ..., M_ss of (3.16))
+//   [ C^T  D ]   C_i = m_i P_i^T (coupling rows), D = diag(m_i I) (lumped M_dd)
+// and its Schur complement A - C D^-1 C^T is exactly zero: nodal displacements can represent any
+// rigid or global motion, so (c, theta, q_s, q_d) is redundant and M is singular. We remove the
+// redundancy with the mean-axis (Tisserand) condition of floating-frame formulations,
+//   sum_i m_i P_i^T d_i-dot = 0,
+// i.e. q_d carries only the motion that c, theta and q_s cannot. Its constraint force acts on the
+// d rows only, so the c and theta rows stay exact momentum balances. The solve is then O(nodes):
+//   A alpha = r_g = sum P_i^T (f_i - m_i a_i) - K_ss (q_s - q_s0)                        (3.13)
+//   d_i-ddot = r_i / m_i - P_i A^-1 sum_j P_j^T r_j,  r_i = f_i - m_i a_i - (K_dd q_d)_i
+// with one k x k LDLT. A's q_s block is singular too for the superquadric (a0 scales what
+// a1..a3 scale), so M_ss gets a small constant parameter inertia eta I (BodyModel::
+// parameter_inertia, fixed when the Model is built so the kinetic metric stays exact); it is
+// reported as kinetic energy 1/2 eta |q_s-dot|^2.
+//
+// Damping D = nu M (sec. 6.1) is the nodal force -nu m_i x_i-dot; first-order bodies (3.51) solve
+// nu M q-dot = f_q - K q with the same machinery.
+#pragma once
+
+#include <Eigen/Cholesky>
+#include <vector>
+
+#include "core/types.h"
+#include "sim/model.h"
+
+namespace pbm {
+
+// Per-body scratch, sized once (no allocation inside a step). Rebuildable at any time.
+struct BodyWorkspace {
+  Mat3 R = Mat3::Identity();  // body -> world rotation (3.7)
+  VecX q_s;                   // current global parameters (n_shape)
+  VecX q_s_rest;              // rest values after tracks (n_shape)
+  std::vector<Vec3> s;        // reference shape at each node, body frame
+  std::vector<Vec3> p;        // s + d, body frame
+  std::vector<Vec3> p_dot;    // J q_s-dot + d-dot, body frame
+  std::vector<Vec3> a_vp;     // velocity-product acceleration a_i (3.18), body frame
+  std::vector<Vec3> x;        // world positions
+  std::vector<Vec3> x_dot;    // world velocities
+  std::vector<Vec3> force;    // external nodal forces, world frame [N]
+  std::vector<int> contact;   // per node: index of the obstacle touched, or -1
+  MatX J;                     // 3 n_nodes x n_s, rows 3i..3i+2 = J_i (2.6)
+  Mat3X J_node;               // 3 x n_shape scratch
+  VecX K_q;                   // K_dd q_d, body frame (3 n_nodes)
+  MatX A;                     // k x k mass block of the generalized rigid+global coordinates
+  Eigen::LDLT<MatX> A_ldlt;
+  VecX r_g, b, gamma;         // k-vectors
+  bool kinematics_valid = false;
+};
+
+void resize_workspace(const BodyModel& body, BodyWorkspace& ws);
+
+// Fills R, q_s, s, p, p_dot, x, x_dot, J (and a_vp for second-order bodies) from the body's slices
+// of q and v. q_s_rest must already hold the rest values in force.
+void compute_body_kinematics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
+                             const Eigen::Ref<const VecX>& v, BodyWorkspace& ws);
+
+// K_dd q_d into ws.K_q (zero for bodies without local DOFs).
+void compute_elastic_forces(const BodyModel& body, const Eigen::Ref<const VecX>& q,
+                            BodyWorkspace& ws);
+
+// Assembles and factors A (the k x k block) from the current kinematics.
+void factor_generalized_mass(const BodyModel& body, BodyWorkspace& ws);
+
+// Given ws.force (external, world), returns the body's velocity derivative (second order:
+// (c-ddot world, omega-dot body, q_s-ddot, d-ddot)) or, for first-order bodies, the velocity
+// itself (3.51). Needs kinematics, elastic forces and the factored A.
+void solve_body_dynamics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
+                         const Eigen::Ref<const VecX>& v, BodyWorkspace& ws,
+                         Eigen::Ref<VecX> out);
+
+// Moves the rigid/global part of d-dot into nu_g (sum m_i P_i^T d_i-dot = 0 again) without
+// changing any node velocity x_i-dot. Needs kinematics and the factored A at this state.
+void resplit_velocities(const BodyModel& body, const Eigen::Ref<const VecX>& q, Eigen::Ref<VecX> v,
+                        BodyWorkspace& ws);
+
+// Energies and momenta from the current kinematics.
+struct BodyEnergy {
+  Real kinetic = 0;     // 1/2 sum m |x-dot|^2 + 1/2 eta |q_s-dot|^2
+  Real elastic = 0;     // 1/2 (q_s - q_s0)^T K_ss (q_s - q_s0) + 1/2 q_d^T K_dd q_d   (3.31, 3.43)
+  Real potential = 0;   // gravity: -sum m_i g . x_i
+  Vec3 linear_momentum = Vec3::Zero();   // sum m x-dot
+  Vec3 angular_momentum = Vec3::Zero();  // sum m x x x-dot (about the world origin)
+};
+BodyEnergy compute_body_energy(const BodyModel& body, const Eigen::Ref<const VecX>& q,
+                               const Eigen::Ref<const VecX>& v, const Vec3& gravity,
+                               BodyWorkspace& ws);
+
+}  // namespace pbm

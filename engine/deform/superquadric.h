@@ -1,0 +1,41 @@
+// Superquadric ellipsoid solid e(u, v, w; a0, a1, a2, a3, eps1, eps2) (2.7) and its Jacobian with
+// respect to its six parameters (2.9). Also the signed powers C^eps, S^eps shared by every
+// reference shape built on e (taper_bend.h, axis_deformations.h).
+#pragma once
+
+#include <Eigen/Core>
+
+#include "core/types.h"
+
+namespace pbm {
+
+// 3 x 6 Jacobian de/d(a0, a1, a2, a3, eps1, eps2).
+using SuperquadricJacobian = Eigen::Matrix<Real, 3, 6>;
+
+// sgn(x) |x|^eps, the C^eps / S^eps of (2.7); 0 at x = 0 for eps > 0.
+Real signed_power(Real x, Real eps);
+// d/deps [sgn(x) |x|^eps] = ln|x| sgn(x) |x|^eps; its limit 0 at x = 0 (eps > 0) so poles and the
+// seam stay finite in (2.9).
+Real log_signed_power(Real x, Real eps);
+
+// The trigonometric factors of (2.7)/(2.9) at one material point (u, v).
+struct SuperquadricBasis {
+  Real C_u = 0;    // sgn(cos u) |cos u|^eps1
+  Real S_u = 0;    // sgn(sin u) |sin u|^eps1
+  Real C_v = 0;    // sgn(cos v) |cos v|^eps2
+  Real S_v = 0;    // sgn(sin v) |sin v|^eps2
+  Real lnC_u = 0;  // ln|cos u| C_u = dC_u/deps1
+  Real lnS_u = 0;  // ln|sin u| S_u = dS_u/deps1
+  Real lnC_v = 0;  // ln|cos v| C_v = dC_v/deps2
+  Real lnS_v = 0;  // ln|sin v| S_v = dS_v/deps2
+};
+
+// u in [-pi/2, pi/2] (latitude), v in [-pi, pi) (longitude); eps1, eps2 > 0.
+SuperquadricBasis compute_superquadric_basis(Real u, Real v, Real eps1, Real eps2);
+
+// e of (2.7) from q_s(0..5) = (a0, a1, a2, a3, eps1, eps2) (2.8); q_s may be longer (the deformed
+// shapes append their parameters). If J_e != nullptr, writes de/dq_s(0..5) (2.9).
+void evaluate_superquadric(const Eigen::Ref<const VecX>& q_s, Real u, Real v, Real w, Vec3& e,
+                           SuperquadricJacobian* J_e);
+
+}  // namespace pbm

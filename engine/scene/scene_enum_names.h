@@ -1,0 +1,38 @@
+// The names scene files use for each closed set of kinds in scene.h (scenes/README.md), shared by
+// the reader (scene_json.cpp) and the writer (scene_json_write.cpp) so the two cannot disagree.
+#pragma once
+
+#include <array>
+#include <string_view>
+#include <utility>
+
+#include "scene/scene.h"
+
+namespace pbm {
+
+template <typename Enum, std::size_t N>
+using NameTable = std::array<std::pair<std::string_view, Enum>, N>;
+
+inline constexpr NameTable<DeformLevel, 3> kDeformLevelNames{{{"rigid", DeformLevel::rigid},
+                                                              {"global", DeformLevel::global},
+                                                              {"local", DeformLevel::local}}};
+inline constexpr NameTable<DynamicsOrder, 2> kDynamicsOrderNames{
+    {{"second", DynamicsOrder::second}, {"first", DynamicsOrder::first}}};
+inline constexpr NameTable<ShapeKind, 3> kShapeKindNames{{{"superquadric", ShapeKind::superquadric},
+                                                          {"taper_bend", ShapeKind::taper_bend},
+                                                          {"general", ShapeKind::general}}};
+inline constexpr NameTable<TessellationKind, 2> kTessellationKindNames{
+    {{"quads", TessellationKind::quads}, {"triangles", TessellationKind::triangles}}};
+inline constexpr NameTable<IntegratorKind, 3> kIntegratorKindNames{
+    {{"euler", IntegratorKind::euler},
+     {"rk4", IntegratorKind::rk4},
+     {"rk45", IntegratorKind::rk45}}};
+inline constexpr NameTable<ObstacleKind, 2> kObstacleKindNames{
+    {{"plane", ObstacleKind::plane}, {"box", ObstacleKind::box}}};
+inline constexpr NameTable<ForceFieldKind, 2> kForceFieldKindNames{
+    {{"acceleration", ForceFieldKind::acceleration},
+     {"force_per_node", ForceFieldKind::force_per_node}}};
+inline constexpr NameTable<Interpolation, 2> kInterpolationNames{
+    {{"linear", Interpolation::linear}, {"smooth", Interpolation::smooth}}};
+
+}  // namespace pbm

@@ -1,0 +1,183 @@
+#include "sim/model.h"
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "core/error.h"
+#include "deform/reference_shape.h"
+#include "sim/state.h"
+
+namespace pbm {
+namespace {
+
+std::string body_path(int b) { return "bodies[" + std::to_string(b) + "]"; }
+
+// Nearest node in material coordinates (v wraps at the seam).
+int nearest_node(const Tessellation& t, const Vec2& uv) {
+  int best = 0;
+  Real best_d = 1e300;
+  for (int i = 0; i < t.node_count(); ++i) {
+    Real du = t.uv[i].x() - uv.x();
+    Real dv = std::remainder(t.uv[i].y() - uv.y(), 2 * std::numbers::pi);
+    // At the poles v is arbitrary (fig. 4.1): only u counts there.
+    if (i == t.south_pole || i == t.north_pole) dv = 0;
+    const Real d = du * du + dv * dv * std::cos(uv.x()) * std::cos(uv.x());
+    if (d < best_d) {
+      best_d = d;
+      best = i;
+    }
+  }
+  return best;
+}
+
+BodyModel build_body(const Scene& scene, int b) {
+  const BodyDef& def = scene.bodies[b];
+  BodyModel body;
+  body.name = def.name;
+  body.level = def.level;
+  body.order = def.order;
+  body.shape = def.shape;
+  body.n_shape = shape_parameter_count(def.shape);
+  body.n_s = def.level == DeformLevel::rigid ? 0 : body.n_shape;
+  body.has_local = def.level == DeformLevel::local;
+  body.tessellation = tessellate(def.tessellation);
+  const int n = body.tessellation.node_count();
+  const Real nodal_mass = def.material.nodal_mass > 0 ? def.material.nodal_mass
+                                                      : def.material.mass / n;
+  if (!(nodal_mass > 0) || !std::isfinite(nodal_mass)) {
+    throw Error(scene.file, body_path(b) + ".material", "needs nodal_mass > 0 or mass > 0");
+  }
+  body.node_mass = VecX::Constant(n, nodal_mass);
+  body.mass = nodal_mass * n;
+  body.damping = def.material.damping;
+  if (def.order == DynamicsOrder::first && !(body.damping > 0)) {
+    throw Error(scene.file, body_path(b) + ".material.damping",
+                "must be > 0 for a first-order body (3.51 divides by D)");
+  }
+  body.w0 = def.material.w0;
+  body.w1 = def.material.w1;
+  body.color = def.material.color;
+  body.q_s_fixed = def.q_s.size() ? def.q_s : default_shape_parameters(def.shape);
+  body.q_s0 = def.q_s0.size() ? def.q_s0 : body.q_s_fixed;
+  body.k_s = def.k_s.size() ? def.k_s : VecX::Zero(body.n_shape);
+  if (body.has_local) body.stiffness = build_membrane_stiffness(body.tessellation, body.w0, body.w1);
+  // Reference shape at the initial parameters: the rigid shape, and the scale of M_ss.
+  body.s_fixed.resize(n);
+  Mat3X J(3, body.n_shape);
+  MatX JtJ = MatX::Zero(body.n_shape, body.n_shape);
+  for (int i = 0; i < n; ++i) {
+    const Vec2& uv = body.tessellation.uv[i];
+    evaluate_reference_shape(def.shape, body.q_s_fixed, uv.x(), uv.y(), 1.0, body.s_fixed[i], &J);
+    JtJ.noalias() += nodal_mass * J.transpose() * J;
+  }
+  body.parameter_inertia = 1e-2 * JtJ.diagonal().mean();
+  if (body.n_s == 0) body.parameter_inertia = 0;
+  if (body.level != DeformLevel::rigid) body.s_fixed.clear();
+  body.q_size = 7 + body.n_s + (body.has_local ? 3 * n : 0);
+  body.v_size = 6 + body.n_s + (body.has_local ? 3 * n : 0);
+  return body;
+}
+
+ObstacleModel build_obstacle(const ObstacleDef& def) {
+  ObstacleModel o;
+  o.name = def.name;
+  o.kind = def.kind;
+  o.point = def.point;
+  o.normal = def.normal.normalized();
+  o.rotation = rotation_from_quaternion(def.orientation);
+  o.half_extents = def.half_extents;
+  o.size = def.size;
+  o.elasticity = def.elasticity;
+  o.friction = def.friction;
+  return o;
+}
+
+TrackModel build_track(const Scene& scene, int t) {
+  const TrackDef& def = scene.tracks[t];
+  const std::string path = "tracks[" + std::to_string(t) + "].target";
+  TrackModel track;
+  track.interpolation = def.interpolation;
+  track.keys = def.keys;
+  int a = 0, k = 0;
+  char tail = 0;
+  const char* s = def.target.c_str();
+  if (std::sscanf(s, "bodies[%d].q_s0[%d]%c", &a, &k, &tail) == 2) {
+    track.target = TrackTarget::body_rest_parameter;
+    if (a < 0 || a >= static_cast<int>(scene.bodies.size()) ||
+        k < 0 || k >= shape_parameter_count(scene.bodies[a].shape)) {
+      throw Error(scene.file, path, "no such body parameter '" + def.target + "'");
+    }
+  } else if (std::sscanf(s, "gravity[%d]%c", &k, &tail) == 1) {
+    track.target = TrackTarget::gravity;
+    if (k < 0 || k > 2) throw Error(scene.file, path, "gravity has components 0..2");
+  } else if (std::sscanf(s, "springs[%d].target[%d]%c", &a, &k, &tail) == 2) {
+    track.target = TrackTarget::spring_target;
+    if (a < 0 || a >= static_cast<int>(scene.springs.size()) || k < 0 || k > 2) {
+      throw Error(scene.file, path, "no such spring target '" + def.target + "'");
+    }
+  } else if (std::sscanf(s, "springs[%d].stiffness%c", &a, &tail) == 1) {
+    track.target = TrackTarget::spring_stiffness;
+    if (a < 0 || a >= static_cast<int>(scene.springs.size())) {
+      throw Error(scene.file, path, "no such spring '" + def.target + "'");
+    }
+  } else {
+    throw Error(scene.file, path, "unknown track target '" + def.target + "'");
+  }
+  track.object = a;
+  track.index = k;
+  if (track.keys.empty()) throw Error(scene.file, "tracks[" + std::to_string(t) + "].keys",
+                                      "needs at least one keyframe");
+  return track;
+}
+
+}  // namespace
+
+Model build_model(const Scene& scene) {
+  Model model;
+  model.scene = scene;
+  model.gravity = scene.gravity;
+  model.solver = scene.solver;
+  if (scene.bodies.empty()) throw Error(scene.file, "bodies", "needs at least one body");
+  for (int b = 0; b < static_cast<int>(scene.bodies.size()); ++b) {
+    BodyModel body = build_body(scene, b);
+    body.q_offset = model.n_q;
+    body.v_offset = model.n_v;
+    model.n_q += body.q_size;
+    model.n_v += body.v_size;
+    model.bodies.push_back(std::move(body));
+  }
+  for (const ObstacleDef& o : scene.obstacles) model.obstacles.push_back(build_obstacle(o));
+  model.force_fields = scene.force_fields;
+  for (int s = 0; s < static_cast<int>(scene.springs.size()); ++s) {
+    const SpringDef& def = scene.springs[s];
+    const std::string path = "springs[" + std::to_string(s) + "]";
+    if (def.body < 0 || def.body >= static_cast<int>(model.bodies.size())) {
+      throw Error(scene.file, path + ".body", "no such body");
+    }
+    const BodyModel& body = model.bodies[def.body];
+    SpringModel spring;
+    spring.name = def.name;
+    spring.body = def.body;
+    if (def.node >= 0) {
+      if (def.node >= body.n_nodes()) throw Error(scene.file, path + ".node", "no such node");
+      spring.node = def.node;
+    } else if (def.material_point) {
+      spring.node = nearest_node(body.tessellation, *def.material_point);
+    } else {
+      throw Error(scene.file, path, "needs node or material_point");
+    }
+    spring.target = def.target;
+    spring.stiffness = def.stiffness;
+    spring.damping = def.damping;
+    spring.t_begin = def.t_begin;
+    spring.t_end = def.t_end;
+    model.springs.push_back(spring);
+  }
+  for (int t = 0; t < static_cast<int>(scene.tracks.size()); ++t) {
+    model.tracks.push_back(build_track(scene, t));
+  }
+  return model;
+}
+
+}  // namespace pbm

@@ -1,0 +1,93 @@
+// Model: everything constant while time runs (DESIGN §1), compiled once from a Scene.
+// State layout: every body owns a slice of State::q and State::v (see BodyModel offsets).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/types.h"
+#include "deform/membrane_stiffness.h"
+#include "deform/tessellation.h"
+#include "scene/scene.h"
+
+namespace pbm {
+
+// One deformable superquadric. Its DOF vector holds only what its level pays for:
+//   q = (q_c (3), q_theta (4, quaternion w,x,y,z), q_s (n_s), q_d (3 n_nodes))       (3.5)
+//   v = (c-dot (3, world), omega (3, BODY frame), q_s-dot (n_s), q_d-dot (3 n_nodes))
+// The angular velocity, not theta-dot, is the rotational velocity coordinate: with the
+// quaternion's 4 rates M_theta,theta = int mu B^T B is singular (G q_theta = 0), so the
+// quaternion is integrated kinematically, q_theta-dot = 1/2 q_theta (x) (0, omega), and
+// renormalized after every step (sec. 6.1).
+struct BodyModel {
+  std::string name;
+  DeformLevel level = DeformLevel::local;
+  DynamicsOrder order = DynamicsOrder::second;
+  ShapeKind shape = ShapeKind::superquadric;
+  int n_s = 0;            // global DOFs in the State (0 for rigid bodies)
+  int n_shape = 0;        // shape_parameter_count(shape): size of q_s whether dynamic or not
+  bool has_local = false;  // q_d present
+  VecX q_s_fixed;         // shape of a rigid body (n_shape)
+  VecX q_s0;              // rest values (3.31), before tracks (n_shape)
+  VecX k_s;               // global stiffness diag (3.32) (n_shape)
+  Real parameter_inertia = 0;  // eta added to M_ss [kg m^2 per unit^2], see deform/body_dynamics.h
+  std::vector<Vec3> s_fixed;   // rigid bodies: reference shape at each node (constant)
+  Tessellation tessellation;
+  MembraneStiffness stiffness;  // K_dd element matrices, local bodies only
+  Real w0 = 0, w1 = 0;
+  VecX node_mass;               // lumped mass per node [kg] (sec. 6.1, footnote 2)
+  Real mass = 0;                // sum of node_mass
+  Real damping = 0;             // nu, D = nu M
+  Vec3 color{0.8, 0.3, 0.3};
+  int q_offset = 0, q_size = 0;  // slice of State::q
+  int v_offset = 0, v_size = 0;  // slice of State::v
+  int n_nodes() const { return static_cast<int>(node_mass.size()); }
+  int n_generalized() const { return 6 + n_s; }  // rigid + global velocity block size k
+};
+
+struct ObstacleModel {
+  std::string name;
+  ObstacleKind kind = ObstacleKind::plane;
+  Vec3 point = Vec3::Zero();     // plane point or box centre
+  Vec3 normal{0, 0, 1};          // plane normal (unit)
+  Mat3 rotation = Mat3::Identity();  // box axes in world
+  Vec3 half_extents{1, 1, 1};
+  Vec2 size{20, 20};
+  Real elasticity = 0;           // a (5.11)
+  Real friction = 0;             // beta_f (5.12)
+};
+
+struct SpringModel {
+  std::string name;
+  int body = 0;
+  int node = 0;
+  Vec3 target = Vec3::Zero();
+  Real stiffness = 0, damping = 0;
+  Real t_begin = 0, t_end = 1e300;
+};
+
+enum class TrackTarget { body_rest_parameter, gravity, spring_target, spring_stiffness };
+struct TrackModel {
+  TrackTarget target = TrackTarget::gravity;
+  int object = 0;  // body or spring index
+  int index = 0;   // parameter or vector component
+  Interpolation interpolation = Interpolation::linear;
+  std::vector<Keyframe> keys;
+};
+
+struct Model {
+  Scene scene;  // the source, kept for saving and for messages
+  Vec3 gravity{0, 0, -9.81};
+  SolverDef solver;
+  std::vector<BodyModel> bodies;
+  std::vector<ObstacleModel> obstacles;
+  std::vector<ForceFieldDef> force_fields;
+  std::vector<SpringModel> springs;
+  std::vector<TrackModel> tracks;
+  int n_q = 0, n_v = 0;
+};
+
+// Throws pbm::Error (file, path) when the scene cannot be compiled.
+Model build_model(const Scene& scene);
+
+}  // namespace pbm

@@ -1,0 +1,299 @@
+#include "sim/world.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "collide/rigid_contact.h"
+
+namespace pbm {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Nodal forces in the world frame: gravity and force fields (f in 3.47), the scene's springs
+// and the user's mouse springs (sec. 6.4), and the damping D = nu M of second-order bodies.
+void accumulate_external_forces(const Model& model, const Inputs& inputs, Real t, int b,
+                                Workspace& ws) {
+  const BodyModel& body = model.bodies[b];
+  BodyWorkspace& bw = ws.bodies[b];
+  const bool second = body.order == DynamicsOrder::second;
+  Vec3 acceleration = ws.drive.gravity;
+  Vec3 per_node = Vec3::Zero();
+  for (const ForceFieldDef& field : model.force_fields) {
+    bool applies = field.bodies.empty();
+    for (int target : field.bodies) applies = applies || target == b;
+    if (!applies) continue;
+    if (field.kind == ForceFieldKind::acceleration) acceleration += field.value;
+    else per_node += field.value;
+  }
+  for (int i = 0; i < body.n_nodes(); ++i) {
+    const Real m = body.node_mass[i];
+    bw.force[i] = m * acceleration + per_node;
+    if (second) bw.force[i] -= body.damping * m * bw.x_dot[i];
+  }
+  for (std::size_t s = 0; s < model.springs.size(); ++s) {
+    const SpringModel& spring = model.springs[s];
+    if (spring.body != b || t < spring.t_begin || t > spring.t_end) continue;
+    const int i = spring.node;
+    bw.force[i] += ws.drive.spring_stiffness[s] * (ws.drive.spring_target[s] - bw.x[i]) -
+                   spring.damping * bw.x_dot[i];
+  }
+  for (const MouseSpring& spring : inputs.springs) {
+    if (spring.body != b || spring.node < 0 || spring.node >= body.n_nodes()) continue;
+    const int i = spring.node;
+    bw.force[i] += spring.stiffness * (spring.target - bw.x[i]) - spring.damping * bw.x_dot[i];
+  }
+}
+
+// q-dot of one body from its velocity coordinates (quaternion kinematics, sec. 3.1.1).
+void body_kinematic_rates(const BodyModel& body, const Eigen::Ref<const VecX>& q,
+                          const Eigen::Ref<const VecX>& v, Eigen::Ref<VecX> q_dot) {
+  q_dot.segment<3>(0) = v.segment<3>(0);
+  q_dot.segment<4>(3) = quaternion_rate(q.segment<4>(3), v.segment<3>(3));
+  const int rest = body.q_size - 7;
+  if (rest > 0) q_dot.segment(7, rest) = v.segment(6, rest);
+}
+
+void evaluate_derivative(const Model& model, const Inputs& inputs, Workspace& ws, Real t,
+                         const VecX& q, const VecX& v, VecX& q_dot, VecX& v_dot) {
+  evaluate_drive(model, t, ws.drive);
+  ws.contacts = 0;
+  for (int b = 0; b < static_cast<int>(model.bodies.size()); ++b) {
+    const BodyModel& body = model.bodies[b];
+    BodyWorkspace& bw = ws.bodies[b];
+    const auto qb = q.segment(body.q_offset, body.q_size);
+    const auto vb = v.segment(body.v_offset, body.v_size);
+    auto t0 = Clock::now();
+    bw.q_s_rest = ws.drive.q_s0[b];
+    compute_body_kinematics(body, qb, vb, bw);
+    compute_elastic_forces(body, qb, bw);
+    accumulate_external_forces(model, inputs, t, b, ws);
+    ws.contacts += add_contact_forces(model, body, bw);
+    ws.stage_seconds[static_cast<int>(StepStage::forces)] += seconds_since(t0);
+    t0 = Clock::now();
+    factor_generalized_mass(body, bw);
+    auto out = v_dot.segment(body.v_offset, body.v_size);
+    solve_body_dynamics(body, qb, vb, bw, out);
+    auto qd = q_dot.segment(body.q_offset, body.q_size);
+    if (body.order == DynamicsOrder::second) {
+      body_kinematic_rates(body, qb, vb, qd);
+    } else {
+      // (3.51): the solve returned the velocity itself; v is not integrated.
+      ws.first_order_velocity.segment(body.v_offset, body.v_size) = out;
+      body_kinematic_rates(body, qb, out, qd);
+      out.setZero();
+    }
+    ws.stage_seconds[static_cast<int>(StepStage::dynamics)] += seconds_since(t0);
+  }
+}
+
+void kinematic_rates(const Model& model, const VecX& q, const VecX& v, VecX& q_dot) {
+  for (const BodyModel& body : model.bodies) {
+    if (body.order != DynamicsOrder::second) continue;
+    body_kinematic_rates(body, q.segment(body.q_offset, body.q_size),
+                         v.segment(body.v_offset, body.v_size),
+                         q_dot.segment(body.q_offset, body.q_size));
+  }
+}
+
+bool all_finite(const State& s) { return s.q.allFinite() && s.v.allFinite(); }
+
+// Names the body and the part of its state that is not finite.
+std::string describe_nan(const Model& model, const State& s) {
+  for (const BodyModel& body : model.bodies) {
+    const auto q = s.q.segment(body.q_offset, body.q_size);
+    const auto v = s.v.segment(body.v_offset, body.v_size);
+    const char* what = nullptr;
+    if (!q.segment<3>(0).allFinite() || !v.segment<3>(0).allFinite()) what = "position q_c";
+    else if (!q.segment<4>(3).allFinite() || !v.segment<3>(3).allFinite()) what = "rotation q_theta";
+    else if (body.n_s > 0 && (!q.segment(7, body.n_s).allFinite() ||
+                              !v.segment(6, body.n_s).allFinite())) what = "global deformation q_s";
+    else if (!q.allFinite() || !v.allFinite()) what = "local deformation q_d";
+    if (what) return "body '" + body.name + "': " + what + " became NaN or infinite";
+  }
+  return "state became NaN or infinite";
+}
+
+}  // namespace
+
+const char* stage_name(StepStage stage) {
+  switch (stage) {
+    case StepStage::forces: return "forces";
+    case StepStage::dynamics: return "dynamics";
+    case StepStage::integrate: return "integrate";
+    case StepStage::collisions: return "collisions";
+    case StepStage::count: break;
+  }
+  return "?";
+}
+
+void init_workspace(const Model& model, const Inputs& inputs, Workspace& ws) {
+  ws.bodies.resize(model.bodies.size());
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) resize_workspace(model.bodies[b], ws.bodies[b]);
+  ws.integrator.resize(model.n_q, model.n_v);
+  ws.integrator.rk45_h = 0;
+  ws.first_order_velocity.setZero(model.n_v);
+  evaluate_drive(model, 0, ws.drive);
+  ws.derivative = [&model, &inputs, &ws](Real t, const VecX& q, const VecX& v, VecX& q_dot,
+                                         VecX& v_dot) {
+    evaluate_derivative(model, inputs, ws, t, q, v, q_dot, v_dot);
+  };
+  ws.kinematic = [&model](const VecX& q, const VecX& v, VecX& q_dot) {
+    kinematic_rates(model, q, v, q_dot);
+  };
+  ws.stage_seconds.fill(0);
+}
+
+bool advance_substep(const Model& model, State& state, Real dt, Workspace& ws, int& evaluations) {
+  auto t0 = Clock::now();
+  IntegrationStats istats;
+  bool ok = true;
+  const double before = ws.stage_seconds[0] + ws.stage_seconds[1];
+  switch (model.solver.integrator) {
+    case IntegratorKind::euler:
+      euler_step(ws.derivative, ws.kinematic, state.time, dt, state.q, state.v, ws.integrator, istats);
+      break;
+    case IntegratorKind::rk4:
+      rk4_step(ws.derivative, state.time, dt, state.q, state.v, ws.integrator, istats);
+      break;
+    case IntegratorKind::rk45:
+      ok = rk45_advance(ws.derivative, state.time, dt, model.solver.tolerance, state.q, state.v,
+                        ws.integrator, istats);
+      break;
+  }
+  evaluations += istats.evaluations;
+  state.time += dt;
+  ws.stage_seconds[static_cast<int>(StepStage::integrate)] +=
+      seconds_since(t0) - (ws.stage_seconds[0] + ws.stage_seconds[1] - before);
+  t0 = Clock::now();
+  for (const BodyModel& body : model.bodies) {
+    auto q = state.q.segment(body.q_offset, body.q_size);
+    auto v = state.v.segment(body.v_offset, body.v_size);
+    q.segment<4>(3).normalize();  // sec. 6.1: renormalize the quaternion every step
+    if (body.order == DynamicsOrder::first) {
+      v = ws.first_order_velocity.segment(body.v_offset, body.v_size);
+    }
+  }
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    const BodyModel& body = model.bodies[b];
+    resolve_penetrations(model, body, state.q.segment(body.q_offset, body.q_size),
+                         state.v.segment(body.v_offset, body.v_size), ws.bodies[b]);
+  }
+  ws.stage_seconds[static_cast<int>(StepStage::collisions)] += seconds_since(t0);
+  return ok && all_finite(state);
+}
+
+void measure_state(const Model& model, const State& state, Workspace& ws, FrameStats& stats) {
+  stats.time = state.time;
+  stats.kinetic = stats.elastic = stats.potential = 0;
+  stats.min_distance = 1e300;
+  stats.bodies.resize(model.bodies.size());
+  evaluate_drive(model, state.time, ws.drive);
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    const BodyModel& body = model.bodies[b];
+    BodyWorkspace& bw = ws.bodies[b];
+    const auto q = state.q.segment(body.q_offset, body.q_size);
+    const auto v = state.v.segment(body.v_offset, body.v_size);
+    bw.q_s_rest = ws.drive.q_s0[b];
+    compute_body_kinematics(body, q, v, bw);
+    const BodyEnergy e = compute_body_energy(body, q, v, ws.drive.gravity, bw);
+    stats.kinetic += e.kinetic;
+    stats.elastic += e.elastic;
+    stats.potential += e.potential;
+    if (!model.obstacles.empty()) {
+      stats.min_distance = std::min(stats.min_distance, min_obstacle_distance(model, bw));
+    }
+    BodyFrameStats& bs = stats.bodies[b];
+    bs.q_s = bw.q_s;
+    bs.kinetic = e.kinetic;
+    bs.elastic = e.elastic;
+    bs.position = q.segment<3>(0);
+  }
+}
+
+FrameResult advance_frame(const Model& model, State& state, Workspace& ws) {
+  FrameResult result;
+  const auto wall0 = Clock::now();
+  const Real frame_dt = 1.0 / model.solver.fps;
+  const Real t_end = (std::round(state.time * model.solver.fps) + 1.0) / model.solver.fps;
+  const int base_substeps = std::max(1, static_cast<int>(std::ceil(frame_dt / model.solver.dt - 1e-9)));
+  FrameStats before;
+  measure_state(model, state, ws, before);
+  // Energy the frame may legitimately gain besides potential energy: a floor per body so bodies
+  // starting at rest are not flagged, plus what the springs hold.
+  Real floor = 0;
+  for (const BodyModel& body : model.bodies) floor += body.mass * (ws.drive.gravity.norm() + 1.0) * 1e-2;
+  for (std::size_t s = 0; s < model.springs.size(); ++s) {
+    const SpringModel& sp = model.springs[s];
+    const Vec3 d = ws.drive.spring_target[s] - ws.bodies[sp.body].x[sp.node];
+    floor += ws.drive.spring_stiffness[s] * d.squaredNorm();
+  }
+  const State start = state;
+  ws.stage_seconds.fill(0);
+  for (int attempt = 0; attempt <= model.solver.max_retries; ++attempt) {
+    const int substeps = base_substeps << attempt;
+    const Real h = frame_dt / substeps;
+    bool ok = true;
+    int evaluations = 0;
+    int done = 0;
+    for (int k = 0; k < substeps && ok; ++k) {
+      // End of sec. 5.2.2: smaller steps while in contact, back to h after.
+      if (model.solver.contact_step_reduction && ws.contacts > 0) {
+        const int m = static_cast<int>(std::ceil(1.0 / model.solver.contact_dt_factor - 1e-9));
+        for (int j = 0; j < m && ok; ++j) ok = advance_substep(model, state, h / m, ws, evaluations);
+        done += m;
+      } else {
+        ok = advance_substep(model, state, h, ws, evaluations);
+        ++done;
+      }
+    }
+    FrameStats after;
+    std::string failure;
+    if (!ok || !all_finite(state)) {
+      failure = describe_nan(model, state);
+    } else {
+      state.time = t_end;
+      measure_state(model, state, ws, after);
+      const Real e0 = before.kinetic + before.elastic;
+      const Real e1 = after.kinetic + after.elastic;
+      const Real allowed =
+          model.solver.energy_growth_bound * (e0 + std::abs(after.potential - before.potential) + floor);
+      if (!(e1 <= allowed)) {
+        failure = "kinetic+elastic energy grew from " + std::to_string(e0) + " J to " +
+                  std::to_string(e1) + " J in one frame";
+        for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+          if (after.bodies[b].kinetic + after.bodies[b].elastic >
+              before.bodies[b].kinetic + before.bodies[b].elastic + 0.5 * (e1 - e0)) {
+            failure = "body '" + model.bodies[b].name + "': " + failure;
+            break;
+          }
+        }
+      }
+    }
+    if (failure.empty()) {
+      result.stats = after;
+      result.stats.substeps = done;
+      result.stats.retries = attempt;
+      result.stats.evaluations = evaluations;
+      result.stats.contacts = ws.contacts;
+      result.stats.stage_seconds = ws.stage_seconds;
+      result.stats.wall_seconds = seconds_since(wall0);
+      return result;
+    }
+    state = start;
+    ws.integrator.rk45_h = 0;
+    result.message = failure;
+  }
+  result.ok = false;
+  result.message += " (after " + std::to_string(model.solver.max_retries) +
+                    " retries with halved substeps, at t = " + std::to_string(state.time) + " s)";
+  result.stats = before;
+  result.stats.wall_seconds = seconds_since(wall0);
+  return result;
+}
+
+}  // namespace pbm

@@ -1,0 +1,75 @@
+// step(): one frame of the whole system as named, ordered, timed stages (STYLE §3, DESIGN §3):
+//   drive (tracks) -> external forces (gravity, fields, springs, mouse, damping, contact)
+//   -> dynamics solve -> integrate -> collisions (projection / impulses)
+// wrapped in the stability guard of DESIGN §6.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "deform/body_dynamics.h"
+#include "integrate/integrators.h"
+#include "sim/inputs.h"
+#include "sim/model.h"
+#include "sim/state.h"
+#include "sim/tracks.h"
+
+namespace pbm {
+
+enum class StepStage { forces, dynamics, integrate, collisions, count };
+const char* stage_name(StepStage stage);
+
+struct Workspace {
+  std::vector<BodyWorkspace> bodies;
+  IntegratorWorkspace integrator;
+  Drive drive;
+  VecX first_order_velocity;  // velocities of first-order bodies from the last evaluation
+  DerivativeFn derivative;
+  KinematicFn kinematic;
+  std::array<double, static_cast<int>(StepStage::count)> stage_seconds{};
+  int contacts = 0;           // touching nodes in the last derivative evaluation
+};
+
+// Sized for the model; binds the derivative callbacks to model, inputs and workspace, so the
+// model and inputs must outlive the workspace's use.
+void init_workspace(const Model& model, const Inputs& inputs, Workspace& ws);
+
+struct BodyFrameStats {
+  VecX q_s;  // current global parameters (n_shape)
+  Real kinetic = 0, elastic = 0;
+  Vec3 position = Vec3::Zero();
+};
+
+struct FrameStats {
+  Real time = 0;
+  double wall_seconds = 0;
+  int substeps = 0;
+  int retries = 0;
+  int evaluations = 0;
+  Real kinetic = 0, elastic = 0, potential = 0;
+  Real min_distance = 1e300;  // min signed distance of any node to any obstacle after the frame
+  int contacts = 0;
+  std::array<double, static_cast<int>(StepStage::count)> stage_seconds{};
+  std::vector<BodyFrameStats> bodies;
+};
+
+struct FrameResult {
+  bool ok = true;
+  std::string message;  // on failure: names the body and the quantity
+  FrameStats stats;
+};
+
+// Advances state by one frame (1 / solver.fps) in substeps of at most solver.dt. On NaN or energy
+// growth past solver.energy_growth_bound the frame is retried from its start with half the
+// substep, up to solver.max_retries times; then it fails and state is left at the frame start.
+FrameResult advance_frame(const Model& model, State& state, Workspace& ws);
+
+// Kinetic/elastic/potential energy and per-body stats of a state (fills FrameStats fields).
+void measure_state(const Model& model, const State& state, Workspace& ws, FrameStats& stats);
+
+// One substep of size dt with the configured integrator, then collision resolution.
+// Returns false if the integrator failed (rk45 step underflow).
+bool advance_substep(const Model& model, State& state, Real dt, Workspace& ws, int& evaluations);
+
+}  // namespace pbm
