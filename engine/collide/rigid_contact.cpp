@@ -121,6 +121,7 @@ int add_contact_forces(const Model& model, const BodyModel& body, BodyWorkspace&
   int touching = 0;
   for (int i = 0; i < body.n_nodes(); ++i) {
     ws.contact[i] = -1;
+    ws.contact_force[i].setZero();
     if (!body.has_local) continue;
     int o = -1;
     Vec3 n;
@@ -137,7 +138,7 @@ int add_contact_forces(const Model& model, const BodyModel& body, BodyWorkspace&
     const Real speed = v_p.norm();
     Vec3 f_c = Vec3::Zero();
     if (speed > 0) f_c = -obs.friction * f_n.norm() * v_p / std::max(speed, kSlipVelocity);
-    ws.force[i] += f_n + f_c;
+    ws.contact_force[i] = f_n + f_c;
   }
   return touching;
 }
@@ -145,18 +146,20 @@ int add_contact_forces(const Model& model, const BodyModel& body, BodyWorkspace&
 ContactResolution resolve_penetrations(const Model& model, const BodyModel& body,
                                        Eigen::Ref<VecX> q, Eigen::Ref<VecX> v, BodyWorkspace& ws) {
   ContactResolution result;
-  if (model.obstacles.empty()) {
-    compute_node_positions(body, q, ws);
-    return result;
-  }
   compute_node_positions(body, q, ws);
   std::vector<int> nodes;
-  for (int i = 0; i < body.n_nodes(); ++i) {
+  for (int i = 0; i < body.n_nodes() && !model.obstacles.empty(); ++i) {
     int o;
     Vec3 n;
     if (deepest(model, ws.x[i], o, n) < 0) nodes.push_back(i);
   }
   result.penetrating_nodes = static_cast<int>(nodes.size());
+  if (nodes.empty() && body.has_local) {
+    // No contact: still restore the mean-axis split, whose velocity form drifts between steps.
+    compute_body_kinematics(body, q, v, ws);
+    factor_generalized_mass(body, ws);
+    resplit_velocities(body, q, v, ws);
+  }
   if (!nodes.empty()) {
     compute_body_kinematics(body, q, v, ws);
     factor_generalized_mass(body, ws);
@@ -181,6 +184,9 @@ ContactResolution resolve_penetrations(const Model& model, const BodyModel& body
           }
         }
       }
+      recenter_displacements(body, q);
+      const Vec3 c = q.segment<3>(0);
+      for (int i = 0; i < body.n_nodes(); ++i) ws.p[i] = ws.R.transpose() * (ws.x[i] - c);
       resplit_velocities(body, q, v, ws);
     } else {
       resolve_generalized_impulses(model, body, nodes, v, ws);
@@ -203,7 +209,7 @@ ContactResolution resolve_penetrations(const Model& model, const BodyModel& body
       }
     }
   }
-  result.min_distance = min_obstacle_distance(model, ws);
+  if (!model.obstacles.empty()) result.min_distance = min_obstacle_distance(model, ws);
   return result;
 }
 

@@ -46,6 +46,7 @@ void resize_workspace(const BodyModel& body, BodyWorkspace& ws) {
   ws.x.assign(n, Vec3::Zero());
   ws.x_dot.assign(n, Vec3::Zero());
   ws.force.assign(n, Vec3::Zero());
+  ws.contact_force.assign(n, Vec3::Zero());
   ws.contact.assign(n, -1);
   ws.J.setZero(3 * n, body.n_s);
   ws.J_node.setZero(3, body.n_shape);
@@ -178,6 +179,10 @@ void solve_body_dynamics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
     Vec3 r = Rt * ws.force[i];  // f_i in the body frame (3.48)
     if (second) r -= body.node_mass[i] * ws.a_vp[i];  // g_q (3.24)
     add_Pt(body, ws, i, r, ws.r_g);
+    // Collision forces: c and theta rows only (see collide/rigid_contact.h).
+    const Vec3 fc = Rt * ws.contact_force[i];
+    ws.r_g.segment<3>(0) += fc;
+    ws.r_g.segment<3>(3) += ws.p[i].cross(fc);
     if (body.has_local) {
       r -= ws.K_q.segment<3>(3 * i);
       add_Pt(body, ws, i, r, ws.b);
@@ -222,6 +227,18 @@ void resplit_velocities(const BodyModel& body, const Eigen::Ref<const VecX>& q, 
   v.segment<3>(3) += ws.gamma.segment<3>(3);
   if (body.n_s > 0) v.segment(sl.s_v, body.n_s) += ws.gamma.tail(body.n_s);
   for (int i = 0; i < n; ++i) v.segment<3>(sl.d_v + 3 * i) -= apply_P(body, ws, i, ws.gamma);
+}
+
+void recenter_displacements(const BodyModel& body, Eigen::Ref<VecX> q) {
+  if (!body.has_local) return;
+  const int n = body.n_nodes();
+  const int d_q = 7 + body.n_s;
+  Vec3 mean = Vec3::Zero();
+  for (int i = 0; i < n; ++i) mean += body.node_mass[i] * q.segment<3>(d_q + 3 * i);
+  mean /= body.mass;
+  const Mat3 R = rotation_from_quaternion(q.segment<4>(3));
+  q.segment<3>(0) += R * mean;
+  for (int i = 0; i < n; ++i) q.segment<3>(d_q + 3 * i) -= mean;
 }
 
 BodyEnergy compute_body_energy(const BodyModel& body, const Eigen::Ref<const VecX>& q,

@@ -48,6 +48,8 @@ struct BodyWorkspace {
   std::vector<Vec3> x;        // world positions
   std::vector<Vec3> x_dot;    // world velocities
   std::vector<Vec3> force;    // external nodal forces, world frame [N]
+  std::vector<Vec3> contact_force;  // collision forces (5.11, 5.12), world frame [N]: rows of
+                                    // c and theta only (see collide/rigid_contact.h)
   std::vector<int> contact;   // per node: index of the obstacle touched, or -1
   MatX J;                     // 3 n_nodes x n_s, rows 3i..3i+2 = J_i (2.6)
   Mat3X J_node;               // 3 x n_shape scratch
@@ -83,6 +85,11 @@ void solve_body_dynamics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
 // changing any node velocity x_i-dot. Needs kinematics and the factored A at this state.
 void resplit_velocities(const BodyModel& body, const Eigen::Ref<const VecX>& q, Eigen::Ref<VecX> v,
                         BodyWorkspace& ws);
+
+// The position counterpart of resplit_velocities for translation: moves the mass-weighted mean
+// of d into c (x_i unchanged exactly). The velocity condition alone is not integrable, so without
+// this, projections at contacts accumulate a translation in q_d and c leaves the body.
+void recenter_displacements(const BodyModel& body, Eigen::Ref<VecX> q);
 
 // Energies and momenta from the current kinematics.
 struct BodyEnergy {

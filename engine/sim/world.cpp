@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "collide/rigid_contact.h"
+#include "deform/reference_shape.h"
 
 namespace pbm {
 namespace {
@@ -101,6 +102,22 @@ void kinematic_rates(const Model& model, const VecX& q, const VecX& v, VecX& q_d
 }
 
 bool all_finite(const State& s) { return s.q.allFinite() && s.v.allFinite(); }
+
+// The scale a0, aspect ratios a1..a3 and squareness eps1, eps2 (the first six entries of every
+// shape kind) must stay positive: a step that drives one through zero has diverged.
+std::string describe_invalid_shape(const Model& model, const State& s) {
+  for (const BodyModel& body : model.bodies) {
+    for (int k = 0; k < std::min(body.n_s, 6); ++k) {
+      const Real value = s.q[body.q_offset + 7 + k];
+      if (!(value > 0)) {
+        return "body '" + body.name + "': global parameter " +
+               shape_parameter_name(body.shape, k) + " = " + std::to_string(value) +
+               " left its valid range (must be > 0)";
+      }
+    }
+  }
+  return {};
+}
 
 // Names the body and the part of its state that is not finite.
 std::string describe_nan(const Model& model, const State& s) {
@@ -255,6 +272,7 @@ FrameResult advance_frame(const Model& model, State& state, Workspace& ws) {
     std::string failure;
     if (!ok || !all_finite(state)) {
       failure = describe_nan(model, state);
+    } else if (failure = describe_invalid_shape(model, state); !failure.empty()) {
     } else {
       state.time = t_end;
       measure_state(model, state, ws, after);
