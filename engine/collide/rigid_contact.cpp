@@ -13,6 +13,8 @@ namespace {
 // Below this tangential speed Coulomb friction is scaled down linearly, so a node at rest is not
 // pushed back and forth by the sign of a rounding error.
 constexpr Real kSlipVelocity = 1e-3;  // [m/s]
+// Normal dashpot on the frame at touching nodes, as a fraction of 1 / dt (see below).
+constexpr Real kContactDamping = 0.25;
 
 // Positions only (no Jacobian): the cheap pass that detects penetration.
 void compute_node_positions(const BodyModel& body, const Eigen::Ref<const VecX>& q,
@@ -87,7 +89,8 @@ void resolve_generalized_impulses(const Model& model, const BodyModel& body,
       const Vec3 n_b = Rt * n;
       const Vec3 vel = apply_P(body, ws, i, nu);  // body-frame node velocity
       const VecX Pn = apply_Pt(body, ws, i, n_b);
-      const VecX MinvPn = ws.A_ldlt.solve(Pn);
+      VecX MinvPn(Pn.size());
+      solve_generalized_mass(ws, Pn, MinvPn);
       const Real w_n = Pn.dot(MinvPn);
       if (!(w_n > 0)) continue;
       // Inelastic normal impulse, accumulated and clamped to push only.
@@ -102,7 +105,8 @@ void resolve_generalized_impulses(const Model& model, const BodyModel& body,
       if (speed > 1e-12 && obs.friction > 0) {
         const Vec3 t = vt / speed;
         const VecX Pt = apply_Pt(body, ws, i, t);
-        const VecX MinvPt = ws.A_ldlt.solve(Pt);
+        VecX MinvPt(Pt.size());
+        solve_generalized_mass(ws, Pt, MinvPt);
         const Real w_t = Pt.dot(MinvPt);
         if (w_t > 0) {
           const Real jt = std::min(speed / w_t, obs.friction * dj > 0 ? obs.friction * jn_new : 0.0);
@@ -131,7 +135,16 @@ int add_contact_forces(const Model& model, const BodyModel& body, BodyWorkspace&
     const ObstacleModel& obs = model.obstacles[o];
     // (5.10)-(5.11): the node's elastic force, in the world frame, pushes back along n.
     const Vec3 f_i = ws.R * ws.K_q.segment<3>(3 * i);
-    const Vec3 f_n = obs.elasticity * std::max(0.0, f_i.dot(n)) * n;
+    Vec3 f_n = obs.elasticity * std::max(0.0, f_i.dot(n)) * n;
+    // The frame's own velocity at the node (x-dot without d-dot): the projection already stops
+    // the node, so an inelastic contact must also stop the frame moving into the surface. A
+    // dashpot of rate kContactDamping / dt per touching node's mass does that without ever
+    // pulling (it is clipped with f_n at zero) and stays explicit-stable.
+    const Vec3 v_frame = ws.x_dot[i] - ws.R * ws.d_dot(body, i);
+    const Real approach = v_frame.dot(n);
+    if (approach < 0 && ws.dt > 0) {
+      f_n -= kContactDamping / ws.dt * body.node_mass[i] * approach * n;
+    }
     // (5.12) with the slip speed regularized near zero.
     const Vec3 v = ws.x_dot[i];
     const Vec3 v_p = v - v.dot(n) * n;

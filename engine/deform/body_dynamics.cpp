@@ -34,6 +34,13 @@ Vec3 apply_P(const BodyModel& body, const BodyWorkspace& ws, int i, const VecX& 
 
 }  // namespace
 
+VecX gauge_direction(const VecX& q_s) {
+  VecX n = VecX::Zero(q_s.size());
+  n[0] = q_s[0];
+  n.segment<3>(1) = -q_s.segment<3>(1);
+  return n.normalized();
+}
+
 void resize_workspace(const BodyModel& body, BodyWorkspace& ws) {
   const int n = body.n_nodes();
   const int k = body.n_generalized();
@@ -42,6 +49,7 @@ void resize_workspace(const BodyModel& body, BodyWorkspace& ws) {
   ws.s.assign(n, Vec3::Zero());
   ws.p.assign(n, Vec3::Zero());
   ws.p_dot.assign(n, Vec3::Zero());
+  ws.d_dot_body.assign(n, Vec3::Zero());
   ws.a_vp.assign(n, Vec3::Zero());
   ws.x.assign(n, Vec3::Zero());
   ws.x_dot.assign(n, Vec3::Zero());
@@ -52,10 +60,13 @@ void resize_workspace(const BodyModel& body, BodyWorkspace& ws) {
   ws.J_node.setZero(3, body.n_shape);
   ws.K_q.setZero(body.has_local ? 3 * n : 0);
   ws.A.setZero(k, k);
-  ws.A_ldlt = Eigen::LDLT<MatX>(k);
+  ws.A_eigen = Eigen::SelfAdjointEigenSolver<MatX>(k);
+  ws.A_inverse_eigenvalues.setZero(k);
+  ws.A_tmp.setZero(k);
   ws.r_g.setZero(k);
   ws.b.setZero(k);
   ws.gamma.setZero(k);
+  ws.alpha.setZero(k);
   ws.kinematics_valid = false;
 }
 
@@ -108,7 +119,8 @@ void compute_body_kinematics(const BodyModel& body, const Eigen::Ref<const VecX>
     ws.p[i] = ws.s[i];
     if (body.has_local) {
       ws.p[i] += q.segment<3>(sl.d_q + 3 * i);
-      ws.p_dot[i] += v.segment<3>(sl.d_v + 3 * i);
+      ws.d_dot_body[i] = v.segment<3>(sl.d_v + 3 * i);
+      ws.p_dot[i] += ws.d_dot_body[i];
     }
     ws.x[i] = c + ws.R * ws.p[i];
     ws.x_dot[i] = ws.R * (V + omega.cross(ws.p[i]) + ws.p_dot[i]);
@@ -160,9 +172,24 @@ void factor_generalized_mass(const BodyModel& body, BodyWorkspace& ws) {
     A.block(3, 6, 3, ns) = mpJ;  // M_theta s = sum m p~ J
     A.block(6, 3, ns, 3) = mpJ.transpose();
     A.block(6, 6, ns, ns) = JtJ;  // M_ss
-    A.block(6, 6, ns, ns).diagonal().array() += body.parameter_inertia;
+    if (ns >= 4) {
+      const VecX n_gauge = gauge_direction(ws.q_s);
+      A.block(6, 6, ns, ns).noalias() += body.parameter_inertia * n_gauge * n_gauge.transpose();
+    }
   }
-  ws.A_ldlt.compute(A);
+  ws.A_eigen.compute(A);
+  const VecX& lambda = ws.A_eigen.eigenvalues();
+  const Real cutoff = 1e-10 * lambda.cwiseAbs().maxCoeff();
+  for (int j = 0; j < lambda.size(); ++j) {
+    ws.A_inverse_eigenvalues[j] = lambda[j] > cutoff ? 1.0 / lambda[j] : 0.0;
+  }
+}
+
+void solve_generalized_mass(BodyWorkspace& ws, const VecX& y, VecX& x) {
+  const MatX& V = ws.A_eigen.eigenvectors();
+  ws.A_tmp.noalias() = V.transpose() * y;
+  ws.A_tmp.array() *= ws.A_inverse_eigenvalues.array();
+  x.noalias() = V * ws.A_tmp;
 }
 
 void solve_body_dynamics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
@@ -192,17 +219,23 @@ void solve_body_dynamics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
     // Global elastic force (3.33) and the damping of the parameter inertia.
     const VecX q_s = q.segment(sl.s_q, ns);
     ws.r_g.tail(ns) -= body.k_s.cwiseProduct(q_s - ws.q_s_rest);
-    if (second) ws.r_g.tail(ns) -= body.damping * body.parameter_inertia * v.segment(sl.s_v, ns);
+    if (second && ns >= 4) {
+      const VecX n_gauge = gauge_direction(ws.q_s);
+      ws.r_g.tail(ns) -= body.damping * body.parameter_inertia *
+                         n_gauge.dot(v.segment(sl.s_v, ns)) * n_gauge;
+    }
   }
   // First-order bodies: nu M q-dot = f_q - K q (3.51); second-order: M alpha = rhs (3.13).
   const Real scale = second ? 1.0 : 1.0 / body.damping;
-  VecX alpha = ws.A_ldlt.solve(ws.r_g) * scale;
+  VecX& alpha = ws.alpha;
+  solve_generalized_mass(ws, ws.r_g, alpha);
+  alpha *= scale;
   // c-ddot (or c-dot) back to the world frame.
   out.segment<3>(0) = ws.R * alpha.segment<3>(0);
   out.segment<3>(3) = alpha.segment<3>(3);
   if (ns > 0) out.segment(sl.s_v, ns) = alpha.tail(ns);
   if (body.has_local) {
-    ws.gamma = ws.A_ldlt.solve(ws.b);
+    solve_generalized_mass(ws, ws.b, ws.gamma);
     for (int i = 0; i < n; ++i) {
       Vec3 r = Rt * ws.force[i] - ws.K_q.segment<3>(3 * i);
       if (second) r -= body.node_mass[i] * ws.a_vp[i];
@@ -222,7 +255,7 @@ void resplit_velocities(const BodyModel& body, const Eigen::Ref<const VecX>& q, 
     add_Pt(body, ws, i, Vec3(body.node_mass[i] * v.segment<3>(sl.d_v + 3 * i)), ws.b);
   }
   // The parameter inertia's share of the q_s rows is not part of sum m P^T P.
-  ws.gamma = ws.A_ldlt.solve(ws.b);
+  solve_generalized_mass(ws, ws.b, ws.gamma);
   v.segment<3>(0) += ws.R * ws.gamma.segment<3>(0);
   v.segment<3>(3) += ws.gamma.segment<3>(3);
   if (body.n_s > 0) v.segment(sl.s_v, body.n_s) += ws.gamma.tail(body.n_s);
@@ -256,7 +289,10 @@ BodyEnergy compute_body_energy(const BodyModel& body, const Eigen::Ref<const Vec
   }
   if (body.n_s > 0) {
     const auto q_s_dot = v.segment(sl.s_v, body.n_s);
-    e.kinetic += 0.5 * body.parameter_inertia * q_s_dot.squaredNorm();
+    if (body.n_s >= 4) {
+      const Real rate = gauge_direction(ws.q_s).dot(q_s_dot);
+      e.kinetic += 0.5 * body.parameter_inertia * rate * rate;
+    }
     const VecX dq = q.segment(sl.s_q, body.n_s) - ws.q_s_rest;
     e.elastic += 0.5 * dq.dot(body.k_s.cwiseProduct(dq));
   }

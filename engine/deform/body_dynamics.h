@@ -19,16 +19,19 @@
 // d rows only, so the c and theta rows stay exact momentum balances. The solve is then O(nodes):
 //   A alpha = r_g = sum P_i^T (f_i - m_i a_i) - K_ss (q_s - q_s0)                        (3.13)
 //   d_i-ddot = r_i / m_i - P_i A^-1 sum_j P_j^T r_j,  r_i = f_i - m_i a_i - (K_dd q_d)_i
-// with one k x k LDLT. A's q_s block is singular too for the superquadric (a0 scales what
-// a1..a3 scale), so M_ss gets a small constant parameter inertia eta I (BodyModel::
-// parameter_inertia, fixed when the Model is built so the kinetic metric stays exact); it is
-// reported as kinetic energy 1/2 eta |q_s-dot|^2.
+// with one k x k symmetric eigen-decomposition. A's q_s block is singular too: scaling a0 by
+// (1 + t) and a1..a3 by 1 / (1 + t) leaves s exactly unchanged (every taper, bend, shear and
+// twist of (2.10)-(2.26) sees only e and the products a0 a_i), so along
+// n = (a0, -a1, -a2, -a3, 0, ...) / |.| no force moves the shape but K_ss still pulls. That
+// direction alone gets a fictitious inertia eta n n^T (BodyModel::parameter_inertia), sized when
+// the Model is built so its oscillation under K_ss stays slow (omega dt <= 1/4); it is reported as
+// kinetic energy 1/2 eta (n . q_s-dot)^2 and changes no shape.
 //
 // Damping D = nu M (sec. 6.1) is the nodal force -nu m_i x_i-dot; first-order bodies (3.51) solve
 // nu M q-dot = f_q - K q with the same machinery.
 #pragma once
 
-#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <vector>
 
 #include "core/types.h"
@@ -55,9 +58,14 @@ struct BodyWorkspace {
   Mat3X J_node;               // 3 x n_shape scratch
   VecX K_q;                   // K_dd q_d, body frame (3 n_nodes)
   MatX A;                     // k x k mass block of the generalized rigid+global coordinates
-  Eigen::LDLT<MatX> A_ldlt;
-  VecX r_g, b, gamma;         // k-vectors
+  Eigen::SelfAdjointEigenSolver<MatX> A_eigen;  // A = V diag(lambda) V^T
+  VecX A_inverse_eigenvalues; // 1 / lambda on A's range, 0 on its null space
+  VecX A_tmp;                 // k scratch
+  VecX r_g, b, gamma, alpha;  // k-vectors
   bool kinematics_valid = false;
+  std::vector<Vec3> d_dot_body;  // d-dot per node, body frame (zero without q_d)
+  Real dt = 0;                  // substep in progress (for rate-based contact damping)
+  const Vec3& d_dot(const BodyModel&, int i) const { return d_dot_body[i]; }
 };
 
 void resize_workspace(const BodyModel& body, BodyWorkspace& ws);
@@ -90,6 +98,12 @@ void resplit_velocities(const BodyModel& body, const Eigen::Ref<const VecX>& q, 
 // of d into c (x_i unchanged exactly). The velocity condition alone is not integrable, so without
 // this, projections at contacts accumulate a translation in q_d and c leaves the body.
 void recenter_displacements(const BodyModel& body, Eigen::Ref<VecX> q);
+
+// Unit direction of q_s along which the reference shape does not change (see above).
+VecX gauge_direction(const VecX& q_s);
+
+// x = A^+ y (pseudo-inverse on A's range), after factor_generalized_mass.
+void solve_generalized_mass(BodyWorkspace& ws, const VecX& y, VecX& x);
 
 // Energies and momenta from the current kinematics.
 struct BodyEnergy {

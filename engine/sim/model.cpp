@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "core/error.h"
+#include "deform/body_dynamics.h"
 #include "deform/reference_shape.h"
 #include "sim/state.h"
 
@@ -62,17 +63,21 @@ BodyModel build_body(const Scene& scene, int b) {
   body.q_s0 = def.q_s0.size() ? def.q_s0 : body.q_s_fixed;
   body.k_s = def.k_s.size() ? def.k_s : VecX::Zero(body.n_shape);
   if (body.has_local) body.stiffness = build_membrane_stiffness(body.tessellation, body.w0, body.w1);
-  // Reference shape at the initial parameters: the rigid shape, and the scale of M_ss.
+  // Reference shape at the initial parameters: the shape of a rigid body.
   body.s_fixed.resize(n);
-  Mat3X J(3, body.n_shape);
-  MatX JtJ = MatX::Zero(body.n_shape, body.n_shape);
   for (int i = 0; i < n; ++i) {
     const Vec2& uv = body.tessellation.uv[i];
-    evaluate_reference_shape(def.shape, body.q_s_fixed, uv.x(), uv.y(), 1.0, body.s_fixed[i], &J);
-    JtJ.noalias() += nodal_mass * J.transpose() * J;
+    evaluate_reference_shape(def.shape, body.q_s_fixed, uv.x(), uv.y(), 1.0, body.s_fixed[i], nullptr);
   }
-  body.parameter_inertia = 1e-2 * JtJ.diagonal().mean();
-  if (body.n_s == 0) body.parameter_inertia = 0;
+  // Inertia of the gauge direction n (deform/body_dynamics.h): omega = sqrt(n^T K_ss n / eta)
+  // at most 1 / (4 dt), and at least 1% of the mass times a0^2 so it is never negligible.
+  if (body.n_s >= 4) {
+    const VecX n_gauge = gauge_direction(body.q_s_fixed);
+    const Real k_gauge = n_gauge.dot(body.k_s.cwiseProduct(n_gauge));
+    const Real dt = scene.solver.dt;
+    body.parameter_inertia = std::max(16.0 * k_gauge * dt * dt,
+                                      1e-2 * body.mass * body.q_s_fixed[0] * body.q_s_fixed[0]);
+  }
   if (body.level != DeformLevel::rigid) body.s_fixed.clear();
   body.q_size = 7 + body.n_s + (body.has_local ? 3 * n : 0);
   body.v_size = 6 + body.n_s + (body.has_local ? 3 * n : 0);

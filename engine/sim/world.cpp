@@ -167,6 +167,7 @@ void init_workspace(const Model& model, const Inputs& inputs, Workspace& ws) {
 
 bool advance_substep(const Model& model, State& state, Real dt, Workspace& ws, int& evaluations) {
   auto t0 = Clock::now();
+  for (BodyWorkspace& bw : ws.bodies) bw.dt = dt;
   IntegrationStats istats;
   bool ok = true;
   const double before = ws.stage_seconds[0] + ws.stage_seconds[1];
