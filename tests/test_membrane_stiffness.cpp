@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -296,24 +295,6 @@ TEST(MembraneStiffness, LinearFieldEnergyIsTheMembraneFunctional) {
     const Real functional = middle + south + north;
     EXPECT_NEAR(2 * membrane_energy(t, k, q), functional, 1e-12 * functional);
   }
-}
-
-// Not a pass/fail benchmark: the largest tessellation's per-step force loop must stay cheap.
-TEST(MembraneStiffness, ForceLoopOnTheLargestTessellationIsFast) {
-  const Tessellation t =
-      tessellate({.kind = TessellationKind::triangles, .rings = 128, .segments = 128});
-  ASSERT_EQ(t.node_count(), 16386);
-  const MembraneStiffness k = build_membrane_stiffness(t, 20.0, 15.0);
-  const VecX q = random_vector(3 * t.node_count(), 3);
-  VecX f = VecX::Zero(q.size());
-  const int repeats = 50;
-  const auto start = std::chrono::steady_clock::now();
-  for (int r = 0; r < repeats; ++r) add_membrane_forces(t, k, q, f);
-  const Real ms =
-      std::chrono::duration<Real, std::milli>(std::chrono::steady_clock::now() - start).count() /
-      repeats;
-  std::printf("add_membrane_forces, %zu elements: %.3f ms per call\n", t.elements.size(), ms);
-  EXPECT_LT(ms, 50.0);  // generous: ~0.3 ms expected at -O2
 }
 
 }  // namespace

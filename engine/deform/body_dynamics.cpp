@@ -172,6 +172,7 @@ void factor_generalized_mass(const BodyModel& body, BodyWorkspace& ws) {
     A.block(3, 6, 3, ns) = mpJ;  // M_theta s = sum m p~ J
     A.block(6, 3, ns, 3) = mpJ.transpose();
     A.block(6, 6, ns, ns) = JtJ;  // M_ss
+    A.block(6, 6, ns, ns).diagonal() += body.parameter_inertia_floor;
     if (ns >= 4) {
       const VecX n_gauge = gauge_direction(ws.q_s);
       A.block(6, 6, ns, ns).noalias() += body.parameter_inertia * n_gauge * n_gauge.transpose();
@@ -219,6 +220,10 @@ void solve_body_dynamics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
     // Global elastic force (3.33) and the damping of the parameter inertia.
     const VecX q_s = q.segment(sl.s_q, ns);
     ws.r_g.tail(ns) -= body.k_s.cwiseProduct(q_s - ws.q_s_rest);
+    if (second) {
+      ws.r_g.tail(ns) -=
+          body.damping * body.parameter_inertia_floor.cwiseProduct(v.segment(sl.s_v, ns));
+    }
     if (second && ns >= 4) {
       const VecX n_gauge = gauge_direction(ws.q_s);
       ws.r_g.tail(ns) -= body.damping * body.parameter_inertia *
@@ -289,6 +294,7 @@ BodyEnergy compute_body_energy(const BodyModel& body, const Eigen::Ref<const Vec
   }
   if (body.n_s > 0) {
     const auto q_s_dot = v.segment(sl.s_v, body.n_s);
+    e.kinetic += 0.5 * q_s_dot.dot(body.parameter_inertia_floor.cwiseProduct(q_s_dot));
     if (body.n_s >= 4) {
       const Real rate = gauge_direction(ws.q_s).dot(q_s_dot);
       e.kinetic += 0.5 * body.parameter_inertia * rate * rate;

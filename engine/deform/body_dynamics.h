@@ -25,7 +25,10 @@
 // n = (a0, -a1, -a2, -a3, 0, ...) / |.| no force moves the shape but K_ss still pulls. That
 // direction alone gets a fictitious inertia eta n n^T (BodyModel::parameter_inertia), sized when
 // the Model is built so its oscillation under K_ss stays slow (omega dt <= 1/4); it is reported as
-// kinetic energy 1/2 eta (n . q_s-dot)^2 and changes no shape.
+// kinetic energy 1/2 eta (n . q_s-dot)^2 and changes no shape. Likewise a bend's location and
+// range weigh nothing while its amount is zero; every q_s entry therefore carries the inertia
+// floor eta_i = k_s,i dt^2 (BodyModel::parameter_inertia_floor), so no mode of K_ss exceeds
+// omega dt = 1; it is reported as kinetic energy too.
 //
 // Damping D = nu M (sec. 6.1) is the nodal force -nu m_i x_i-dot; first-order bodies (3.51) solve
 // nu M q-dot = f_q - K q with the same machinery.

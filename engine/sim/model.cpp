@@ -71,6 +71,9 @@ BodyModel build_body(const Scene& scene, int b) {
   }
   // Inertia of the gauge direction n (deform/body_dynamics.h): omega = sqrt(n^T K_ss n / eta)
   // at most 1 / (4 dt), and at least 1% of the mass times a0^2 so it is never negligible.
+  // Parameters whose mass vanishes at some shapes (a bend's location and range weigh nothing
+  // while its amount is 0) get the floor eta_i = k_i dt^2, so omega_i dt <= 1 everywhere.
+  body.parameter_inertia_floor = body.k_s.head(body.n_s) * scene.solver.dt * scene.solver.dt;
   if (body.n_s >= 4) {
     const VecX n_gauge = gauge_direction(body.q_s_fixed);
     const Real k_gauge = n_gauge.dot(body.k_s.cwiseProduct(n_gauge));

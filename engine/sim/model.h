@@ -30,7 +30,8 @@ struct BodyModel {
   VecX q_s_fixed;         // shape of a rigid body (n_shape)
   VecX q_s0;              // rest values (3.31), before tracks (n_shape)
   VecX k_s;               // global stiffness diag (3.32) (n_shape)
-  Real parameter_inertia = 0;  // optional eta added to M_ss, see deform/body_dynamics.h
+  Real parameter_inertia = 0;  // eta of the gauge direction, see deform/body_dynamics.h
+  VecX parameter_inertia_floor;  // eta_i = k_s,i dt^2 added to M_ss's diagonal (n_s)
   std::vector<Vec3> s_fixed;   // rigid bodies: reference shape at each node (constant)
   Tessellation tessellation;
   MembraneStiffness stiffness;  // K_dd element matrices, local bodies only
