@@ -54,20 +54,6 @@ Real deepest(const Model& model, const Vec3& x, int& which, Vec3& normal) {
   return best;
 }
 
-Vec3 apply_P(const BodyModel& body, const BodyWorkspace& ws, int i, const VecX& g) {
-  Vec3 r = g.segment<3>(0) + g.segment<3>(3).cross(ws.p[i]);
-  if (body.n_s > 0) r.noalias() += ws.J.middleRows(3 * i, 3) * g.tail(body.n_s);
-  return r;
-}
-
-VecX apply_Pt(const BodyModel& body, const BodyWorkspace& ws, int i, const Vec3& y) {
-  VecX out(body.n_generalized());
-  out.segment<3>(0) = y;
-  out.segment<3>(3) = ws.p[i].cross(y);
-  if (body.n_s > 0) out.tail(body.n_s) = ws.J.middleRows(3 * i, 3).transpose() * y;
-  return out;
-}
-
 // Sequential impulses on nu_g for a body without q_d (velocity-level contact).
 void resolve_generalized_impulses(const Model& model, const BodyModel& body,
                                   const std::vector<int>& nodes, Eigen::Ref<VecX> v,
@@ -87,8 +73,8 @@ void resolve_generalized_impulses(const Model& model, const BodyModel& body,
       deepest(model, ws.x[i], o, n);
       const ObstacleModel& obs = model.obstacles[o];
       const Vec3 n_b = Rt * n;
-      const Vec3 vel = apply_P(body, ws, i, nu);  // body-frame node velocity
-      const VecX Pn = apply_Pt(body, ws, i, n_b);
+      const Vec3 vel = node_from_generalized(body, ws, i, nu);  // body-frame node velocity
+      const VecX Pn = generalized_from_node(body, ws, i, n_b);
       VecX MinvPn(Pn.size());
       solve_generalized_mass(ws, Pn, MinvPn);
       const Real w_n = Pn.dot(MinvPn);
@@ -99,12 +85,12 @@ void resolve_generalized_impulses(const Model& model, const BodyModel& body,
       j_normal[c] = jn_new;
       nu += dj * MinvPn;
       // Coulomb (5.12) at the impulse level: the tangential impulse is bounded by beta_f j_n.
-      const Vec3 vel2 = apply_P(body, ws, i, nu);
+      const Vec3 vel2 = node_from_generalized(body, ws, i, nu);
       Vec3 vt = vel2 - vel2.dot(n_b) * n_b;
       const Real speed = vt.norm();
       if (speed > 1e-12 && obs.friction > 0) {
         const Vec3 t = vt / speed;
-        const VecX Pt = apply_Pt(body, ws, i, t);
+        const VecX Pt = generalized_from_node(body, ws, i, t);
         VecX MinvPt(Pt.size());
         solve_generalized_mass(ws, Pt, MinvPt);
         const Real w_t = Pt.dot(MinvPt);

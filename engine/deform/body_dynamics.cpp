@@ -34,6 +34,16 @@ Vec3 apply_P(const BodyModel& body, const BodyWorkspace& ws, int i, const VecX& 
 
 }  // namespace
 
+Vec3 node_from_generalized(const BodyModel& body, const BodyWorkspace& ws, int i, const VecX& g) {
+  return apply_P(body, ws, i, g);
+}
+
+VecX generalized_from_node(const BodyModel& body, const BodyWorkspace& ws, int i, const Vec3& y) {
+  VecX out = VecX::Zero(body.n_generalized());
+  add_Pt(body, ws, i, y, out);
+  return out;
+}
+
 VecX gauge_direction(const VecX& q_s) {
   VecX n = VecX::Zero(q_s.size());
   n[0] = q_s[0];

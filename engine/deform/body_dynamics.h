@@ -102,6 +102,11 @@ void resplit_velocities(const BodyModel& body, const Eigen::Ref<const VecX>& q, 
 // this, projections at contacts accumulate a translation in q_d and c leaves the body.
 void recenter_displacements(const BodyModel& body, Eigen::Ref<VecX> q);
 
+// P_i g = g_c + g_omega x p_i + J_i g_s: body-frame velocity of node i for a k-vector g.
+Vec3 node_from_generalized(const BodyModel& body, const BodyWorkspace& ws, int i, const VecX& g);
+// P_i^T y = (y, p_i x y, J_i^T y): the generalized force of a body-frame nodal force y.
+VecX generalized_from_node(const BodyModel& body, const BodyWorkspace& ws, int i, const Vec3& y);
+
 // Unit direction of q_s along which the reference shape does not change (see above).
 VecX gauge_direction(const VecX& q_s);
 
