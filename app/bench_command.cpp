@@ -39,8 +39,9 @@ double time_ours(const Scene& base, int resolution, int steps, int& nodes) {
 double time_bullet(const Scene& scene, int nodes, int steps, int& bullet_nodes) {
   const BodyDef& body = scene.bodies[0];
   const Real a0 = body.q_s.size() ? body.q_s[0] : 1.0;
-  const Vec3 radii = body.q_s.size() >= 4 ? Vec3(a0 * body.q_s[1], a0 * body.q_s[2], a0 * body.q_s[3])
-                                          : Vec3(a0, a0, a0);
+  const Vec3 radii = body.q_s.size() >= 4
+                         ? Vec3(a0 * body.q_s[1], a0 * body.q_s[2], a0 * body.q_s[3])
+                         : Vec3(a0, a0, a0);
   auto peer = bench::make_bullet_soft_ellipsoid(nodes, radii.x(), radii.y(), radii.z(),
                                                 body.position.z(), nodes * 1.0);
   bullet_nodes = bench::node_count(*peer);

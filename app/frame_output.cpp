@@ -50,8 +50,8 @@ std::string frame_stats_json(const Model& model, const FrameStats& s, long frame
   j["kinetic_energy"] = s.kinetic;
   j["elastic_energy"] = s.elastic;
   j["potential_energy"] = s.potential;
-  j["min_obstacle_distance"] = model.obstacles.empty() ? nlohmann::json(nullptr)
-                                                       : nlohmann::json(s.min_distance);
+  j["min_obstacle_distance"] =
+      model.obstacles.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.min_distance);
   j["contact_nodes"] = s.contacts;
   nlohmann::json stages;
   for (int k = 0; k < static_cast<int>(StepStage::count); ++k) {

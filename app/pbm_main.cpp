@@ -1,6 +1,6 @@
 // pbm: the command line (validate, simulate, bench). A thin main over engine/ (DESIGN §2).
-#include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
 
 #include "bench_command.h"
 #include "simulate_command.h"
@@ -9,7 +9,8 @@ int main(int argc, char** argv) {
   CLI::App app{"pbm: physics-based deformable models from the command line"};
   app.require_subcommand(1);
   std::string validate_scene;
-  auto* validate = app.add_subcommand("validate", "check a scene file (exit 2 with the field path)");
+  auto* validate =
+      app.add_subcommand("validate", "check a scene file (exit 2 with the field path)");
   validate->add_option("scene", validate_scene, "scene JSON file")->required();
 
   pbm::SimulateOptions sim;

@@ -25,8 +25,8 @@ void ProgressBar::update(long done, const std::string& detail) {
   const int filled = static_cast<int>(frac * kWidth);
   std::string bar(static_cast<std::size_t>(filled), '#');
   bar.resize(kWidth, '.');
-  std::fprintf(stderr, "\r%s [%s] %ld/%ld  %.1fs  ETA %.1fs %s   ", label_.c_str(), bar.c_str(), done,
-               total_, elapsed, eta, detail.c_str());
+  std::fprintf(stderr, "\r%s [%s] %ld/%ld  %.1fs  ETA %.1fs %s   ", label_.c_str(), bar.c_str(),
+               done, total_, elapsed, eta, detail.c_str());
   std::fflush(stderr);
 }
 

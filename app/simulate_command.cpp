@@ -1,7 +1,7 @@
 #include "simulate_command.h"
 
-#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -52,10 +52,14 @@ void apply_overrides(const SimulateOptions& o, Scene& scene) {
     scene.solver.tolerance = *o.tolerance;
   }
   if (o.integrator) {
-    if (*o.integrator == "euler") scene.solver.integrator = IntegratorKind::euler;
-    else if (*o.integrator == "rk4") scene.solver.integrator = IntegratorKind::rk4;
-    else if (*o.integrator == "rk45") scene.solver.integrator = IntegratorKind::rk45;
-    else throw Error("", "--integrator", "must be euler, rk4 or rk45");
+    if (*o.integrator == "euler")
+      scene.solver.integrator = IntegratorKind::euler;
+    else if (*o.integrator == "rk4")
+      scene.solver.integrator = IntegratorKind::rk4;
+    else if (*o.integrator == "rk45")
+      scene.solver.integrator = IntegratorKind::rk45;
+    else
+      throw Error("", "--integrator", "must be euler, rk4 or rk45");
   }
 }
 
@@ -87,7 +91,8 @@ int run_simulate(const SimulateOptions& o) {
     model = build_model(scene);
     if (o.frames && o.seconds) throw Error("", "--frames", "give --frames or --seconds, not both");
     if (o.frames) {
-      if (*o.frames < 0 || *o.frames > 10'000'000) throw Error("", "--frames", "must be in [0, 1e7]");
+      if (*o.frames < 0 || *o.frames > 10'000'000)
+        throw Error("", "--frames", "must be in [0, 1e7]");
       n_frames = *o.frames;
     } else {
       const double seconds = o.seconds ? *o.seconds : model.solver.duration;

@@ -13,9 +13,9 @@ struct SimulateOptions {
   std::optional<double> dt;
   std::optional<std::string> integrator;
   std::optional<double> tolerance;
-  std::string states_out;   // states.jsonl, empty = none
-  std::string stats_out;    // stats.json, empty = none
-  std::string mesh_dir;     // empty = none
+  std::string states_out;  // states.jsonl, empty = none
+  std::string stats_out;   // stats.json, empty = none
+  std::string mesh_dir;    // empty = none
   std::string mesh_format = "obj";
 };
 

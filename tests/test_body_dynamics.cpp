@@ -22,10 +22,10 @@ Totals totals(const Model& model, const State& state, Workspace& ws) {
   Totals t;
   t.energy = stats.kinetic + stats.elastic;
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
-    const BodyEnergy e = compute_body_energy(model.bodies[b],
-                                             state.q.segment(model.bodies[b].q_offset, model.bodies[b].q_size),
-                                             state.v.segment(model.bodies[b].v_offset, model.bodies[b].v_size),
-                                             model.gravity, ws.bodies[b]);
+    const BodyEnergy e = compute_body_energy(
+        model.bodies[b], state.q.segment(model.bodies[b].q_offset, model.bodies[b].q_size),
+        state.v.segment(model.bodies[b].v_offset, model.bodies[b].v_size), model.gravity,
+        ws.bodies[b]);
     t.p += e.linear_momentum;
     t.l += e.angular_momentum;
   }

@@ -82,8 +82,10 @@ TEST(Cli, ValidateAcceptsEveryShippedScene) {
 // Same scene and settings => byte-identical states.jsonl (single-threaded determinism).
 TEST(Cli, TwoRunsOfEachSceneWriteIdenticalStates) {
   const fs::path dir = temp_dir();
-  for (const auto& [name, frames] : {std::pair{"jello-ball", 40}, {"rugby-ball", 30},
-                                     {"morphing-shell", 30}, {"interactive", 2}}) {
+  for (const auto& [name, frames] : {std::pair{"jello-ball", 40},
+                                     {"rugby-ball", 30},
+                                     {"morphing-shell", 30},
+                                     {"interactive", 2}}) {
     const fs::path a = dir / (std::string(name) + "_a.jsonl");
     const fs::path b = dir / (std::string(name) + "_b.jsonl");
     const std::string common = "simulate " + scene(name) + " --frames " + std::to_string(frames);
@@ -138,7 +140,8 @@ TEST(Cli, BadInputExitsTwoNamingFileAndField) {
   const Result missing = pbm("simulate /nonexistent/scene-file.json");
   EXPECT_EQ(missing.code, 2);
   EXPECT_NE(missing.output.find("scene-file.json"), std::string::npos) << missing.output;
-  const Result unwritable = pbm("simulate " + scene("jello-ball") + " --frames 1 --out /proc/nope/s.jsonl");
+  const Result unwritable =
+      pbm("simulate " + scene("jello-ball") + " --frames 1 --out /proc/nope/s.jsonl");
   EXPECT_EQ(unwritable.code, 2) << unwritable.output;
   const Result bad_integrator = pbm("simulate " + scene("jello-ball") + " --integrator leapfrog");
   EXPECT_EQ(bad_integrator.code, 2) << bad_integrator.output;
@@ -152,7 +155,8 @@ TEST(Cli, ExtremeParametersRunOrFailCleanlyWithoutNaN) {
   };
   std::string taper_pos = ball("1.0", "15", "1");
   taper_pos.replace(taper_pos.find("\"superquadric\""), 14, "\"taper_bend\"");
-  taper_pos.replace(taper_pos.find("\"q_s\": {"), 8, "\"q_s\": {\"t1\": 1.0, \"t2\": -1.0, \"b1\": 0.5, \"b2\": 1.0, \"b3\": 1.0, ");
+  taper_pos.replace(taper_pos.find("\"q_s\": {"), 8,
+                    "\"q_s\": {\"t1\": 1.0, \"t2\": -1.0, \"b1\": 0.5, \"b2\": 1.0, \"b3\": 1.0, ");
   taper_pos.replace(taper_pos.find("[1e4, 1e4, 1e4, 1e4, 1e3, 1e3]"), 30, "{\"a0\": 1e4}");
   std::string bend_neg = taper_pos;
   bend_neg.replace(bend_neg.find("\"b2\": 1.0"), 9, "\"b2\": -1.0");

@@ -45,7 +45,9 @@ RunResult simulate(const Scene& scene, int frames) {
   return run;
 }
 
-Scene jello() { return load_scene(std::string(PBM_SOURCE_DIR) + "/scenes/jello-ball.json"); }
+Scene jello() {
+  return load_scene(std::string(PBM_SOURCE_DIR) + "/scenes/jello-ball.json");
+}
 
 // Every step is one frame in this scene (fps = 1 / dt), so this checks every step.
 TEST(Contact, JelloBallNeverEndsAStepBelowEitherPlaneAndRollsDownTheSlope) {
@@ -109,7 +111,8 @@ TEST_P(LevelContact, BallDroppedOnABoxAndTheGroundStaysOutside) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllLevels, LevelContact,
-                         testing::Values(DeformLevel::rigid, DeformLevel::global, DeformLevel::local));
+                         testing::Values(DeformLevel::rigid, DeformLevel::global,
+                                         DeformLevel::local));
 
 }  // namespace
 }  // namespace pbm

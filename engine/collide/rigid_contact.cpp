@@ -95,7 +95,8 @@ void resolve_generalized_impulses(const Model& model, const BodyModel& body,
         solve_generalized_mass(ws, Pt, MinvPt);
         const Real w_t = Pt.dot(MinvPt);
         if (w_t > 0) {
-          const Real jt = std::min(speed / w_t, obs.friction * dj > 0 ? obs.friction * jn_new : 0.0);
+          const Real jt =
+              std::min(speed / w_t, obs.friction * dj > 0 ? obs.friction * jn_new : 0.0);
           nu -= jt * MinvPt;
         }
       }
@@ -173,7 +174,7 @@ ContactResolution resolve_penetrations(const Model& model, const BodyModel& body
           const Real phi = deepest(model, ws.x[i], o, n);
           if (phi >= kProjectionMargin * 0.5) break;
           const Vec3 dx = (kProjectionMargin - phi) * n;  // step 1: project along n
-          q.segment<3>(d_q + 3 * i) += Rt * dx;             // step 2: the new d
+          q.segment<3>(d_q + 3 * i) += Rt * dx;           // step 2: the new d
           ws.p[i] += Rt * dx;
           ws.x[i] += dx;
           const Real vn = ws.x_dot[i].dot(n);

@@ -29,7 +29,8 @@ inline constexpr Real kContactBand = 1e-6;
 inline constexpr Real kProjectionMargin = 1e-9;
 
 // Sets ws.contact_force to (5.11) + (5.12) for the touching nodes of a local body and records the
-// obstacle in ws.contact. Needs kinematics and elastic forces. Returns the number of touching nodes.
+// obstacle in ws.contact. Needs kinematics and elastic forces. Returns the number of touching
+// nodes.
 int add_contact_forces(const Model& model, const BodyModel& body, BodyWorkspace& ws);
 
 struct ContactResolution {

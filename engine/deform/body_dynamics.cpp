@@ -204,8 +204,7 @@ void solve_generalized_mass(BodyWorkspace& ws, const VecX& y, VecX& x) {
 }
 
 void solve_body_dynamics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
-                         const Eigen::Ref<const VecX>& v, BodyWorkspace& ws,
-                         Eigen::Ref<VecX> out) {
+                         const Eigen::Ref<const VecX>& v, BodyWorkspace& ws, Eigen::Ref<VecX> out) {
   const int n = body.n_nodes();
   const int ns = body.n_s;
   const BodySlices sl = slices(body);
@@ -214,7 +213,7 @@ void solve_body_dynamics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
   ws.r_g.setZero();
   ws.b.setZero();
   for (int i = 0; i < n; ++i) {
-    Vec3 r = Rt * ws.force[i];  // f_i in the body frame (3.48)
+    Vec3 r = Rt * ws.force[i];                        // f_i in the body frame (3.48)
     if (second) r -= body.node_mass[i] * ws.a_vp[i];  // g_q (3.24)
     add_Pt(body, ws, i, r, ws.r_g);
     // Collision forces: c and theta rows only (see collide/rigid_contact.h).
@@ -236,8 +235,8 @@ void solve_body_dynamics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
     }
     if (second && ns >= 4) {
       const VecX n_gauge = gauge_direction(ws.q_s);
-      ws.r_g.tail(ns) -= body.damping * body.parameter_inertia *
-                         n_gauge.dot(v.segment(sl.s_v, ns)) * n_gauge;
+      ws.r_g.tail(ns) -=
+          body.damping * body.parameter_inertia * n_gauge.dot(v.segment(sl.s_v, ns)) * n_gauge;
     }
   }
   // First-order bodies: nu M q-dot = f_q - K q (3.51); second-order: M alpha = rhs (3.13).
@@ -254,7 +253,8 @@ void solve_body_dynamics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
     for (int i = 0; i < n; ++i) {
       Vec3 r = Rt * ws.force[i] - ws.K_q.segment<3>(3 * i);
       if (second) r -= body.node_mass[i] * ws.a_vp[i];
-      out.segment<3>(sl.d_v + 3 * i) = (r / body.node_mass[i] - apply_P(body, ws, i, ws.gamma)) * scale;
+      out.segment<3>(sl.d_v + 3 * i) =
+          (r / body.node_mass[i] - apply_P(body, ws, i, ws.gamma)) * scale;
     }
   }
 }

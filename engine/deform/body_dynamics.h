@@ -1,6 +1,7 @@
 // Lagrangian dynamics of one hybrid deformable body (ch. 3) with lumped nodal masses (sec. 6.1).
 //
-// Kinematics (3.1)-(3.4), written in the body frame with P_i = [I, -p~_i, J_i] (3 x k, k = 6 + n_s):
+// Kinematics (3.1)-(3.4), written in the body frame with P_i = [I, -p~_i, J_i] (3 x k, k = 6 +
+// n_s):
 //   x_i = c + R p_i,  p_i = s(u_i; q_s) + d_i                                           (3.3)
 //   R^T x_i-dot = P_i nu_g + d_i-dot,  nu_g = (R^T c-dot, omega, q_s-dot)               (3.4)
 //   R^T x_i-ddot = P_i alpha + d_i-ddot + a_i,                                           (3.17)
@@ -44,30 +45,30 @@ namespace pbm {
 
 // Per-body scratch, sized once (no allocation inside a step). Rebuildable at any time.
 struct BodyWorkspace {
-  Mat3 R = Mat3::Identity();  // body -> world rotation (3.7)
-  VecX q_s;                   // current global parameters (n_shape)
-  VecX q_s_rest;              // rest values after tracks (n_shape)
-  std::vector<Vec3> s;        // reference shape at each node, body frame
-  std::vector<Vec3> p;        // s + d, body frame
-  std::vector<Vec3> p_dot;    // J q_s-dot + d-dot, body frame
-  std::vector<Vec3> a_vp;     // velocity-product acceleration a_i (3.18), body frame
-  std::vector<Vec3> x;        // world positions
-  std::vector<Vec3> x_dot;    // world velocities
-  std::vector<Vec3> force;    // external nodal forces, world frame [N]
+  Mat3 R = Mat3::Identity();        // body -> world rotation (3.7)
+  VecX q_s;                         // current global parameters (n_shape)
+  VecX q_s_rest;                    // rest values after tracks (n_shape)
+  std::vector<Vec3> s;              // reference shape at each node, body frame
+  std::vector<Vec3> p;              // s + d, body frame
+  std::vector<Vec3> p_dot;          // J q_s-dot + d-dot, body frame
+  std::vector<Vec3> a_vp;           // velocity-product acceleration a_i (3.18), body frame
+  std::vector<Vec3> x;              // world positions
+  std::vector<Vec3> x_dot;          // world velocities
+  std::vector<Vec3> force;          // external nodal forces, world frame [N]
   std::vector<Vec3> contact_force;  // collision forces (5.11, 5.12), world frame [N]: rows of
                                     // c and theta only (see collide/rigid_contact.h)
-  std::vector<int> contact;   // per node: index of the obstacle touched, or -1
-  MatX J;                     // 3 n_nodes x n_s, rows 3i..3i+2 = J_i (2.6)
-  Mat3X J_node;               // 3 x n_shape scratch
-  VecX K_q;                   // K_dd q_d, body frame (3 n_nodes)
-  MatX A;                     // k x k mass block of the generalized rigid+global coordinates
+  std::vector<int> contact;         // per node: index of the obstacle touched, or -1
+  MatX J;                           // 3 n_nodes x n_s, rows 3i..3i+2 = J_i (2.6)
+  Mat3X J_node;                     // 3 x n_shape scratch
+  VecX K_q;                         // K_dd q_d, body frame (3 n_nodes)
+  MatX A;                           // k x k mass block of the generalized rigid+global coordinates
   Eigen::SelfAdjointEigenSolver<MatX> A_eigen;  // A = V diag(lambda) V^T
-  VecX A_inverse_eigenvalues; // 1 / lambda on A's range, 0 on its null space
-  VecX A_tmp;                 // k scratch
-  VecX r_g, b, gamma, alpha;  // k-vectors
+  VecX A_inverse_eigenvalues;                   // 1 / lambda on A's range, 0 on its null space
+  VecX A_tmp;                                   // k scratch
+  VecX r_g, b, gamma, alpha;                    // k-vectors
   bool kinematics_valid = false;
   std::vector<Vec3> d_dot_body;  // d-dot per node, body frame (zero without q_d)
-  Real dt = 0;                  // substep in progress (for rate-based contact damping)
+  Real dt = 0;                   // substep in progress (for rate-based contact damping)
   const Vec3& d_dot(const BodyModel&, int i) const { return d_dot_body[i]; }
 };
 
@@ -89,8 +90,7 @@ void factor_generalized_mass(const BodyModel& body, BodyWorkspace& ws);
 // (c-ddot world, omega-dot body, q_s-ddot, d-ddot)) or, for first-order bodies, the velocity
 // itself (3.51). Needs kinematics, elastic forces and the factored A.
 void solve_body_dynamics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
-                         const Eigen::Ref<const VecX>& v, BodyWorkspace& ws,
-                         Eigen::Ref<VecX> out);
+                         const Eigen::Ref<const VecX>& v, BodyWorkspace& ws, Eigen::Ref<VecX> out);
 
 // Moves the rigid/global part of d-dot into nu_g (sum m_i P_i^T d_i-dot = 0 again) without
 // changing any node velocity x_i-dot. Needs kinematics and the factored A at this state.
@@ -115,9 +115,9 @@ void solve_generalized_mass(BodyWorkspace& ws, const VecX& y, VecX& x);
 
 // Energies and momenta from the current kinematics.
 struct BodyEnergy {
-  Real kinetic = 0;     // 1/2 sum m |x-dot|^2 + 1/2 eta |q_s-dot|^2
-  Real elastic = 0;     // 1/2 (q_s - q_s0)^T K_ss (q_s - q_s0) + 1/2 q_d^T K_dd q_d   (3.31, 3.43)
-  Real potential = 0;   // gravity: -sum m_i g . x_i
+  Real kinetic = 0;    // 1/2 sum m |x-dot|^2 + 1/2 eta |q_s-dot|^2
+  Real elastic = 0;    // 1/2 (q_s - q_s0)^T K_ss (q_s - q_s0) + 1/2 q_d^T K_dd q_d   (3.31, 3.43)
+  Real potential = 0;  // gravity: -sum m_i g . x_i
   Vec3 linear_momentum = Vec3::Zero();   // sum m x-dot
   Vec3 angular_momentum = Vec3::Zero();  // sum m x x x-dot (about the world origin)
 };

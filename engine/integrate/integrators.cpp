@@ -87,10 +87,10 @@ bool rk45_advance(const DerivativeFn& f, Real t, Real dt, Real tol, VecX& q, Vec
     stage(5, t + h, {{0, a61}, {1, a62}, {2, a63}, {3, a64}, {4, a65}}, h);
     stage(6, t + h, {{0, b1}, {2, b3}, {3, b4}, {4, b5}, {5, b6}}, h);
     // The 7th stage is the solution (FSAL); its state is q_stage / v_stage.
-    ws.q_err = h * (e1 * ws.kq[0] + e3 * ws.kq[2] + e4 * ws.kq[3] + e5 * ws.kq[4] +
-                    e6 * ws.kq[5] + e7 * ws.kq[6]);
-    ws.v_err = h * (e1 * ws.kv[0] + e3 * ws.kv[2] + e4 * ws.kv[3] + e5 * ws.kv[4] +
-                    e6 * ws.kv[5] + e7 * ws.kv[6]);
+    ws.q_err = h * (e1 * ws.kq[0] + e3 * ws.kq[2] + e4 * ws.kq[3] + e5 * ws.kq[4] + e6 * ws.kq[5] +
+                    e7 * ws.kq[6]);
+    ws.v_err = h * (e1 * ws.kv[0] + e3 * ws.kv[2] + e4 * ws.kv[3] + e5 * ws.kv[4] + e6 * ws.kv[5] +
+                    e7 * ws.kv[6]);
     Real err = 0;
     for (Eigen::Index i = 0; i < q.size(); ++i) {
       err = std::max(err, std::abs(ws.q_err[i]) / (tol + tol * std::abs(q[i])));

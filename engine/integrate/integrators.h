@@ -18,7 +18,7 @@ using KinematicFn = std::function<void(const VecX& q, const VecX& v, VecX& q_dot
 struct IntegratorWorkspace {
   VecX kq[7], kv[7];  // stage derivatives
   VecX q_stage, v_stage, q_err, v_err;
-  Real rk45_h = 0;    // step size carried between calls (0 = start with the full interval)
+  Real rk45_h = 0;  // step size carried between calls (0 = start with the full interval)
   void resize(int n_q, int n_v);
 };
 

@@ -34,11 +34,11 @@ struct TessellationDef {
 };
 
 struct MaterialDef {
-  Real w0 = 20.0;        // membrane magnitude stiffness w00 (3.34), >= 0
-  Real w1 = 15.0;        // membrane variation stiffness w10 = w01 (3.34), >= 0
-  Real nodal_mass = 0;   // lumped mass per node [kg]; exactly one of nodal_mass, mass is > 0
-  Real mass = 0;         // total mass [kg], spread by lumping (sec. 6.1)
-  Real damping = 1.4;    // nu in D = nu M (sec. 6.1) [1/s], >= 0
+  Real w0 = 20.0;             // membrane magnitude stiffness w00 (3.34), >= 0
+  Real w1 = 15.0;             // membrane variation stiffness w10 = w01 (3.34), >= 0
+  Real nodal_mass = 0;        // lumped mass per node [kg]; exactly one of nodal_mass, mass is > 0
+  Real mass = 0;              // total mass [kg], spread by lumping (sec. 6.1)
+  Real damping = 1.4;         // nu in D = nu M (sec. 6.1) [1/s], >= 0
   Vec3 color{0.8, 0.3, 0.3};  // base colour for the renderer, components in [0, 1]
 };
 
@@ -50,10 +50,10 @@ struct BodyDef {
   VecX q_s;   // initial global parameters (size shape_parameter_count(shape)), (2.8)/(2.11)/(2.27)
   VecX q_s0;  // rest values of q_s (3.31); defaults to q_s
   VecX k_s;   // stiffness per global parameter (3.32), >= 0; defaults to 0
-  Vec3 position = Vec3::Zero();                // q_c [m]
-  Vec4 orientation{1, 0, 0, 0};                // q_theta quaternion (w, x, y, z), normalized on load
-  Vec3 velocity = Vec3::Zero();                // c-dot [m/s], world frame
-  Vec3 angular_velocity = Vec3::Zero();        // omega [rad/s], world frame
+  Vec3 position = Vec3::Zero();          // q_c [m]
+  Vec4 orientation{1, 0, 0, 0};          // q_theta quaternion (w, x, y, z), normalized on load
+  Vec3 velocity = Vec3::Zero();          // c-dot [m/s], world frame
+  Vec3 angular_velocity = Vec3::Zero();  // omega [rad/s], world frame
   TessellationDef tessellation;
   MaterialDef material;
 };
@@ -61,13 +61,13 @@ struct BodyDef {
 struct ObstacleDef {
   std::string name;
   ObstacleKind kind = ObstacleKind::plane;
-  Vec3 point = Vec3::Zero();        // plane: a point on it; box: its centre [m]
-  Vec3 normal{0, 0, 1};             // plane: outward normal (normalized on load)
-  Vec3 half_extents{1, 1, 1};       // box: half sizes along its axes [m], > 0
-  Vec4 orientation{1, 0, 0, 0};     // box: quaternion (w, x, y, z)
-  Vec2 size{20, 20};                // plane: drawn extent for the renderer [m]
-  Real elasticity = 670.0;          // a in f_n = a (f_i . n) n (5.11), >= 0
-  Real friction = 0.3;              // beta_f in (5.12), in [0, 1]
+  Vec3 point = Vec3::Zero();     // plane: a point on it; box: its centre [m]
+  Vec3 normal{0, 0, 1};          // plane: outward normal (normalized on load)
+  Vec3 half_extents{1, 1, 1};    // box: half sizes along its axes [m], > 0
+  Vec4 orientation{1, 0, 0, 0};  // box: quaternion (w, x, y, z)
+  Vec2 size{20, 20};             // plane: drawn extent for the renderer [m]
+  Real elasticity = 670.0;       // a in f_n = a (f_i . n) n (5.11), >= 0
+  Real friction = 0.3;           // beta_f in (5.12), in [0, 1]
 };
 
 struct ForceFieldDef {
@@ -104,19 +104,19 @@ struct TrackDef {
 };
 
 struct SolverDef {
-  Real dt = 0.001;                                  // substep [s], > 0
+  Real dt = 0.001;  // substep [s], > 0
   IntegratorKind integrator = IntegratorKind::euler;
-  Real tolerance = 1e-6;                            // rk45 local error tolerance, > 0
-  Real fps = 30.0;                                  // frames per second of the timeline, > 0
-  Real duration = 10.0;                             // default length of a run [s], > 0
-  bool contact_step_reduction = false;              // end of sec. 5.2.2
-  Real contact_dt_factor = 0.25;                    // dt multiplier while in contact, (0, 1]
-  int max_retries = 4;                              // stability guard: halvings per frame
-  Real energy_growth_bound = 10.0;                  // max (E_after / E_before) for one frame
+  Real tolerance = 1e-6;                // rk45 local error tolerance, > 0
+  Real fps = 30.0;                      // frames per second of the timeline, > 0
+  Real duration = 10.0;                 // default length of a run [s], > 0
+  bool contact_step_reduction = false;  // end of sec. 5.2.2
+  Real contact_dt_factor = 0.25;        // dt multiplier while in contact, (0, 1]
+  int max_retries = 4;                  // stability guard: halvings per frame
+  Real energy_growth_bound = 10.0;      // max (E_after / E_before) for one frame
 };
 
 struct Scene {
-  std::string file;       // where it was loaded from (for messages)
+  std::string file;  // where it was loaded from (for messages)
   std::string name;
   Vec3 gravity{0, 0, -9.81};
   SolverDef solver;

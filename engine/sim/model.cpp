@@ -12,7 +12,9 @@
 namespace pbm {
 namespace {
 
-std::string body_path(int b) { return "bodies[" + std::to_string(b) + "]"; }
+std::string body_path(int b) {
+  return "bodies[" + std::to_string(b) + "]";
+}
 
 // Nearest node in material coordinates (v wraps at the seam).
 int nearest_node(const Tessellation& t, const Vec2& uv) {
@@ -44,8 +46,8 @@ BodyModel build_body(const Scene& scene, int b) {
   body.has_local = def.level == DeformLevel::local;
   body.tessellation = tessellate(def.tessellation);
   const int n = body.tessellation.node_count();
-  const Real nodal_mass = def.material.nodal_mass > 0 ? def.material.nodal_mass
-                                                      : def.material.mass / n;
+  const Real nodal_mass =
+      def.material.nodal_mass > 0 ? def.material.nodal_mass : def.material.mass / n;
   if (!(nodal_mass > 0) || !std::isfinite(nodal_mass)) {
     throw Error(scene.file, body_path(b) + ".material", "needs nodal_mass > 0 or mass > 0");
   }
@@ -62,12 +64,14 @@ BodyModel build_body(const Scene& scene, int b) {
   body.q_s_fixed = def.q_s.size() ? def.q_s : default_shape_parameters(def.shape);
   body.q_s0 = def.q_s0.size() ? def.q_s0 : body.q_s_fixed;
   body.k_s = def.k_s.size() ? def.k_s : VecX::Zero(body.n_shape);
-  if (body.has_local) body.stiffness = build_membrane_stiffness(body.tessellation, body.w0, body.w1);
+  if (body.has_local)
+    body.stiffness = build_membrane_stiffness(body.tessellation, body.w0, body.w1);
   // Reference shape at the initial parameters: the shape of a rigid body.
   body.s_fixed.resize(n);
   for (int i = 0; i < n; ++i) {
     const Vec2& uv = body.tessellation.uv[i];
-    evaluate_reference_shape(def.shape, body.q_s_fixed, uv.x(), uv.y(), 1.0, body.s_fixed[i], nullptr);
+    evaluate_reference_shape(def.shape, body.q_s_fixed, uv.x(), uv.y(), 1.0, body.s_fixed[i],
+                             nullptr);
   }
   // Inertia of the gauge direction n (deform/body_dynamics.h): omega = sqrt(n^T K_ss n / eta)
   // at most 1 / (4 dt), and at least 1% of the mass times a0^2 so it is never negligible.
@@ -112,8 +116,8 @@ TrackModel build_track(const Scene& scene, int t) {
   const char* s = def.target.c_str();
   if (std::sscanf(s, "bodies[%d].q_s0[%d]%c", &a, &k, &tail) == 2) {
     track.target = TrackTarget::body_rest_parameter;
-    if (a < 0 || a >= static_cast<int>(scene.bodies.size()) ||
-        k < 0 || k >= shape_parameter_count(scene.bodies[a].shape)) {
+    if (a < 0 || a >= static_cast<int>(scene.bodies.size()) || k < 0 ||
+        k >= shape_parameter_count(scene.bodies[a].shape)) {
       throw Error(scene.file, path, "no such body parameter '" + def.target + "'");
     }
   } else if (std::sscanf(s, "gravity[%d]%c", &k, &tail) == 1) {
@@ -134,8 +138,9 @@ TrackModel build_track(const Scene& scene, int t) {
   }
   track.object = a;
   track.index = k;
-  if (track.keys.empty()) throw Error(scene.file, "tracks[" + std::to_string(t) + "].keys",
-                                      "needs at least one keyframe");
+  if (track.keys.empty())
+    throw Error(scene.file, "tracks[" + std::to_string(t) + "].keys",
+                "needs at least one keyframe");
   return track;
 }
 

@@ -24,21 +24,21 @@ struct BodyModel {
   DeformLevel level = DeformLevel::local;
   DynamicsOrder order = DynamicsOrder::second;
   ShapeKind shape = ShapeKind::superquadric;
-  int n_s = 0;            // global DOFs in the State (0 for rigid bodies)
-  int n_shape = 0;        // shape_parameter_count(shape): size of q_s whether dynamic or not
-  bool has_local = false;  // q_d present
-  VecX q_s_fixed;         // shape of a rigid body (n_shape)
-  VecX q_s0;              // rest values (3.31), before tracks (n_shape)
-  VecX k_s;               // global stiffness diag (3.32) (n_shape)
-  Real parameter_inertia = 0;  // eta of the gauge direction, see deform/body_dynamics.h
+  int n_s = 0;                   // global DOFs in the State (0 for rigid bodies)
+  int n_shape = 0;               // shape_parameter_count(shape): size of q_s whether dynamic or not
+  bool has_local = false;        // q_d present
+  VecX q_s_fixed;                // shape of a rigid body (n_shape)
+  VecX q_s0;                     // rest values (3.31), before tracks (n_shape)
+  VecX k_s;                      // global stiffness diag (3.32) (n_shape)
+  Real parameter_inertia = 0;    // eta of the gauge direction, see deform/body_dynamics.h
   VecX parameter_inertia_floor;  // eta_i = k_s,i dt^2 added to M_ss's diagonal (n_s)
-  std::vector<Vec3> s_fixed;   // rigid bodies: reference shape at each node (constant)
+  std::vector<Vec3> s_fixed;     // rigid bodies: reference shape at each node (constant)
   Tessellation tessellation;
   MembraneStiffness stiffness;  // K_dd element matrices, local bodies only
   Real w0 = 0, w1 = 0;
-  VecX node_mass;               // lumped mass per node [kg] (sec. 6.1, footnote 2)
-  Real mass = 0;                // sum of node_mass
-  Real damping = 0;             // nu, D = nu M
+  VecX node_mass;    // lumped mass per node [kg] (sec. 6.1, footnote 2)
+  Real mass = 0;     // sum of node_mass
+  Real damping = 0;  // nu, D = nu M
   Vec3 color{0.8, 0.3, 0.3};
   int q_offset = 0, q_size = 0;  // slice of State::q
   int v_offset = 0, v_size = 0;  // slice of State::v
@@ -49,13 +49,13 @@ struct BodyModel {
 struct ObstacleModel {
   std::string name;
   ObstacleKind kind = ObstacleKind::plane;
-  Vec3 point = Vec3::Zero();     // plane point or box centre
-  Vec3 normal{0, 0, 1};          // plane normal (unit)
+  Vec3 point = Vec3::Zero();         // plane point or box centre
+  Vec3 normal{0, 0, 1};              // plane normal (unit)
   Mat3 rotation = Mat3::Identity();  // box axes in world
   Vec3 half_extents{1, 1, 1};
   Vec2 size{20, 20};
-  Real elasticity = 0;           // a (5.11)
-  Real friction = 0;             // beta_f (5.12)
+  Real elasticity = 0;  // a (5.11)
+  Real friction = 0;    // beta_f (5.12)
 };
 
 struct SpringModel {

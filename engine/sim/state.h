@@ -20,7 +20,7 @@ State initial_state(const Model& model);
 std::uint64_t hash_state(const State& state);
 
 // Quaternion (w,x,y,z) helpers for q_theta.
-Mat3 rotation_from_quaternion(const Vec4& q);  // (3.7), q normalized first
+Mat3 rotation_from_quaternion(const Vec4& q);                 // (3.7), q normalized first
 Vec4 quaternion_rate(const Vec4& q, const Vec3& omega_body);  // 1/2 q (x) (0, omega)
 
 }  // namespace pbm

@@ -41,10 +41,18 @@ void evaluate_drive(const Model& model, Real t, Drive& drive) {
   for (const TrackModel& track : model.tracks) {
     const Real value = evaluate_track(track, t);
     switch (track.target) {
-      case TrackTarget::body_rest_parameter: drive.q_s0[track.object][track.index] = value; break;
-      case TrackTarget::gravity: drive.gravity[track.index] = value; break;
-      case TrackTarget::spring_target: drive.spring_target[track.object][track.index] = value; break;
-      case TrackTarget::spring_stiffness: drive.spring_stiffness[track.object] = value; break;
+      case TrackTarget::body_rest_parameter:
+        drive.q_s0[track.object][track.index] = value;
+        break;
+      case TrackTarget::gravity:
+        drive.gravity[track.index] = value;
+        break;
+      case TrackTarget::spring_target:
+        drive.spring_target[track.object][track.index] = value;
+        break;
+      case TrackTarget::spring_stiffness:
+        drive.spring_stiffness[track.object] = value;
+        break;
     }
   }
 }

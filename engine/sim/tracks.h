@@ -14,7 +14,7 @@ Real evaluate_track(const TrackModel& track, Real t);
 // Everything the tracks may change, at one time.
 struct Drive {
   Vec3 gravity = Vec3::Zero();
-  std::vector<VecX> q_s0;        // rest values per body (n_shape each)
+  std::vector<VecX> q_s0;  // rest values per body (n_shape each)
   std::vector<Vec3> spring_target;
   std::vector<Real> spring_stiffness;
 };

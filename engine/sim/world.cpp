@@ -28,8 +28,10 @@ void accumulate_external_forces(const Model& model, const Inputs& inputs, Real t
     bool applies = field.bodies.empty();
     for (int target : field.bodies) applies = applies || target == b;
     if (!applies) continue;
-    if (field.kind == ForceFieldKind::acceleration) acceleration += field.value;
-    else per_node += field.value;
+    if (field.kind == ForceFieldKind::acceleration)
+      acceleration += field.value;
+    else
+      per_node += field.value;
   }
   for (int i = 0; i < body.n_nodes(); ++i) {
     const Real m = body.node_mass[i];
@@ -101,7 +103,9 @@ void kinematic_rates(const Model& model, const VecX& q, const VecX& v, VecX& q_d
   }
 }
 
-bool all_finite(const State& s) { return s.q.allFinite() && s.v.allFinite(); }
+bool all_finite(const State& s) {
+  return s.q.allFinite() && s.v.allFinite();
+}
 
 // The scale a0, aspect ratios a1..a3 and squareness eps1, eps2 (the first six entries of every
 // shape kind) must stay positive: a step that drives one through zero has diverged.
@@ -110,9 +114,8 @@ std::string describe_invalid_shape(const Model& model, const State& s) {
     for (int k = 0; k < std::min(body.n_s, 6); ++k) {
       const Real value = s.q[body.q_offset + 7 + k];
       if (!(value > 0)) {
-        return "body '" + body.name + "': global parameter " +
-               shape_parameter_name(body.shape, k) + " = " + std::to_string(value) +
-               " left its valid range (must be > 0)";
+        return "body '" + body.name + "': global parameter " + shape_parameter_name(body.shape, k) +
+               " = " + std::to_string(value) + " left its valid range (must be > 0)";
       }
     }
   }
@@ -125,11 +128,15 @@ std::string describe_nan(const Model& model, const State& s) {
     const auto q = s.q.segment(body.q_offset, body.q_size);
     const auto v = s.v.segment(body.v_offset, body.v_size);
     const char* what = nullptr;
-    if (!q.segment<3>(0).allFinite() || !v.segment<3>(0).allFinite()) what = "position q_c";
-    else if (!q.segment<4>(3).allFinite() || !v.segment<3>(3).allFinite()) what = "rotation q_theta";
-    else if (body.n_s > 0 && (!q.segment(7, body.n_s).allFinite() ||
-                              !v.segment(6, body.n_s).allFinite())) what = "global deformation q_s";
-    else if (!q.allFinite() || !v.allFinite()) what = "local deformation q_d";
+    if (!q.segment<3>(0).allFinite() || !v.segment<3>(0).allFinite())
+      what = "position q_c";
+    else if (!q.segment<4>(3).allFinite() || !v.segment<3>(3).allFinite())
+      what = "rotation q_theta";
+    else if (body.n_s > 0 &&
+             (!q.segment(7, body.n_s).allFinite() || !v.segment(6, body.n_s).allFinite()))
+      what = "global deformation q_s";
+    else if (!q.allFinite() || !v.allFinite())
+      what = "local deformation q_d";
     if (what) return "body '" + body.name + "': " + what + " became NaN or infinite";
   }
   return "state became NaN or infinite";
@@ -139,18 +146,24 @@ std::string describe_nan(const Model& model, const State& s) {
 
 const char* stage_name(StepStage stage) {
   switch (stage) {
-    case StepStage::forces: return "forces";
-    case StepStage::dynamics: return "dynamics";
-    case StepStage::integrate: return "integrate";
-    case StepStage::collisions: return "collisions";
-    case StepStage::count: break;
+    case StepStage::forces:
+      return "forces";
+    case StepStage::dynamics:
+      return "dynamics";
+    case StepStage::integrate:
+      return "integrate";
+    case StepStage::collisions:
+      return "collisions";
+    case StepStage::count:
+      break;
   }
   return "?";
 }
 
 void init_workspace(const Model& model, const Inputs& inputs, Workspace& ws) {
   ws.bodies.resize(model.bodies.size());
-  for (std::size_t b = 0; b < model.bodies.size(); ++b) resize_workspace(model.bodies[b], ws.bodies[b]);
+  for (std::size_t b = 0; b < model.bodies.size(); ++b)
+    resize_workspace(model.bodies[b], ws.bodies[b]);
   ws.integrator.resize(model.n_q, model.n_v);
   ws.integrator.rk45_h = 0;
   ws.first_order_velocity.setZero(model.n_v);
@@ -173,7 +186,8 @@ bool advance_substep(const Model& model, State& state, Real dt, Workspace& ws, i
   const double before = ws.stage_seconds[0] + ws.stage_seconds[1];
   switch (model.solver.integrator) {
     case IntegratorKind::euler:
-      euler_step(ws.derivative, ws.kinematic, state.time, dt, state.q, state.v, ws.integrator, istats);
+      euler_step(ws.derivative, ws.kinematic, state.time, dt, state.q, state.v, ws.integrator,
+                 istats);
       break;
     case IntegratorKind::rk4:
       rk4_step(ws.derivative, state.time, dt, state.q, state.v, ws.integrator, istats);
@@ -238,13 +252,15 @@ FrameResult advance_frame(const Model& model, State& state, Workspace& ws) {
   const auto wall0 = Clock::now();
   const Real frame_dt = 1.0 / model.solver.fps;
   const Real t_end = (std::round(state.time * model.solver.fps) + 1.0) / model.solver.fps;
-  const int base_substeps = std::max(1, static_cast<int>(std::ceil(frame_dt / model.solver.dt - 1e-9)));
+  const int base_substeps =
+      std::max(1, static_cast<int>(std::ceil(frame_dt / model.solver.dt - 1e-9)));
   FrameStats before;
   measure_state(model, state, ws, before);
   // Energy the frame may legitimately gain besides potential energy: a floor per body so bodies
   // starting at rest are not flagged, plus what the springs hold.
   Real floor = 0;
-  for (const BodyModel& body : model.bodies) floor += body.mass * (ws.drive.gravity.norm() + 1.0) * 1e-2;
+  for (const BodyModel& body : model.bodies)
+    floor += body.mass * (ws.drive.gravity.norm() + 1.0) * 1e-2;
   for (std::size_t s = 0; s < model.springs.size(); ++s) {
     const SpringModel& sp = model.springs[s];
     const Vec3 d = ws.drive.spring_target[s] - ws.bodies[sp.body].x[sp.node];
@@ -262,7 +278,8 @@ FrameResult advance_frame(const Model& model, State& state, Workspace& ws) {
       // End of sec. 5.2.2: smaller steps while in contact, back to h after.
       if (model.solver.contact_step_reduction && ws.contacts > 0) {
         const int m = static_cast<int>(std::ceil(1.0 / model.solver.contact_dt_factor - 1e-9));
-        for (int j = 0; j < m && ok; ++j) ok = advance_substep(model, state, h / m, ws, evaluations);
+        for (int j = 0; j < m && ok; ++j)
+          ok = advance_substep(model, state, h / m, ws, evaluations);
         done += m;
       } else {
         ok = advance_substep(model, state, h, ws, evaluations);
@@ -279,8 +296,8 @@ FrameResult advance_frame(const Model& model, State& state, Workspace& ws) {
       measure_state(model, state, ws, after);
       const Real e0 = before.kinetic + before.elastic;
       const Real e1 = after.kinetic + after.elastic;
-      const Real allowed =
-          model.solver.energy_growth_bound * (e0 + std::abs(after.potential - before.potential) + floor);
+      const Real allowed = model.solver.energy_growth_bound *
+                           (e0 + std::abs(after.potential - before.potential) + floor);
       if (!(e1 <= allowed)) {
         failure = "kinetic+elastic energy grew from " + std::to_string(e0) + " J to " +
                   std::to_string(e1) + " J in one frame";

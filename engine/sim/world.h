@@ -28,7 +28,7 @@ struct Workspace {
   DerivativeFn derivative;
   KinematicFn kinematic;
   std::array<double, static_cast<int>(StepStage::count)> stage_seconds{};
-  int contacts = 0;           // touching nodes in the last derivative evaluation
+  int contacts = 0;  // touching nodes in the last derivative evaluation
 };
 
 // Sized for the model; binds the derivative callbacks to model, inputs and workspace, so the
