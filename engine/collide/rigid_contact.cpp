@@ -10,11 +10,10 @@
 namespace pbm {
 namespace {
 
-// Below this tangential speed Coulomb friction is scaled down linearly, so a node at rest is not
-// pushed back and forth by the sign of a rounding error.
-constexpr Real kSlipVelocity = 1e-3;  // [m/s]
-// Normal dashpot on the frame at touching nodes, as a fraction of 1 / dt (see below).
-constexpr Real kContactDamping = 0.25;
+// Share of the slip a touching node's friction may stop in one step (see add_contact_forces).
+constexpr Real kFrictionStopFraction = 0.5;
+// Share of the frame's normal velocity the contact dashpot removes per step (see below).
+constexpr Real kContactDamping = 0.5;
 
 // Positions only (no Jacobian): the cheap pass that detects penetration.
 void compute_node_positions(const BodyModel& body, const Eigen::Ref<const VecX>& q,
@@ -113,32 +112,46 @@ int add_contact_forces(const Model& model, const BodyModel& body, BodyWorkspace&
   for (int i = 0; i < body.n_nodes(); ++i) {
     ws.contact[i] = -1;
     ws.contact_force[i].setZero();
-    if (!body.has_local) continue;
+    if (!body.has_local || model.obstacles.empty()) continue;
     int o = -1;
     Vec3 n;
-    if (model.obstacles.empty() || deepest(model, ws.x[i], o, n) > kContactBand) continue;
+    if (deepest(model, ws.x[i], o, n) > kContactBand) continue;
     ws.contact[i] = o;
     ++touching;
+  }
+  if (touching == 0) return 0;
+  // Both dashpots below are sized on the whole frame: shared by the touching nodes, they remove
+  // a fixed share of the frame's normal (or slip) velocity per step, whatever the node count,
+  // which keeps them explicit-stable at the book's steps.
+  const Real frame_mass_share = body.mass / touching;
+  const Real rate = ws.dt > 0 ? 1.0 / ws.dt : 0.0;
+  for (int i = 0; i < body.n_nodes(); ++i) {
+    const int o = ws.contact[i];
+    if (o < 0) continue;
     const ObstacleModel& obs = model.obstacles[o];
+    Vec3 n;
+    signed_distance(obs, ws.x[i], n);
     // (5.10)-(5.11): the node's elastic force, in the world frame, pushes back along n.
     const Vec3 f_i = ws.R * ws.K_q.segment<3>(3 * i);
-    Vec3 f_n = obs.elasticity * std::max(0.0, f_i.dot(n)) * n;
-    // The frame's own velocity at the node (x-dot without d-dot): the projection already stops
-    // the node, so an inelastic contact must also stop the frame moving into the surface. A
-    // dashpot of rate kContactDamping / dt per touching node's mass does that without ever
-    // pulling (it is clipped with f_n at zero) and stays explicit-stable.
+    Real f_normal = obs.elasticity * std::max(0.0, f_i.dot(n));
+    // The frame's own velocity at the node (x-dot without d-dot): the projection stops the node,
+    // and a Kelvin-Voigt dashpot stops the frame bouncing on the stiff a K q_d spring (an
+    // inelastic contact, as the book's balls come to rest). It never pulls: the total is >= 0.
     const Vec3 v_frame = ws.x_dot[i] - ws.R * ws.d_dot(body, i);
-    const Real approach = v_frame.dot(n);
-    if (approach < 0 && ws.dt > 0) {
-      f_n -= kContactDamping / ws.dt * body.node_mass[i] * approach * n;
-    }
-    // (5.12) with the slip speed regularized near zero.
-    const Vec3 v = ws.x_dot[i];
-    const Vec3 v_p = v - v.dot(n) * n;
+    f_normal -= kContactDamping * frame_mass_share * rate * v_frame.dot(n);
+    f_normal = std::max(0.0, f_normal);
+    Vec3 f = f_normal * n;
+    // (5.12) on the frame's slip at the node (a rolling ball's contact nodes do not slip),
+    // capped at the force that stops the slip within one step: below that the explicit Coulomb
+    // regularization would be unstable (rate * dt >> 1 at 0.031 s).
+    const Vec3 v_p = v_frame - v_frame.dot(n) * n;
     const Real speed = v_p.norm();
-    Vec3 f_c = Vec3::Zero();
-    if (speed > 0) f_c = -obs.friction * f_n.norm() * v_p / std::max(speed, kSlipVelocity);
-    ws.contact_force[i] = f_n + f_c;
+    if (speed > 0) {
+      const Real magnitude =
+          std::min(obs.friction * f_normal, kFrictionStopFraction * frame_mass_share * rate * speed);
+      f -= magnitude * v_p / speed;
+    }
+    ws.contact_force[i] = f;
   }
   return touching;
 }
@@ -188,6 +201,10 @@ ContactResolution resolve_penetrations(const Model& model, const BodyModel& body
       const Vec3 c = q.segment<3>(0);
       for (int i = 0; i < body.n_nodes(); ++i) ws.p[i] = ws.R.transpose() * (ws.x[i] - c);
       resplit_velocities(body, q, v, ws);
+      // The frame too: its approach at the touching nodes is removed by impulses (inelastic,
+      // Coulomb-bounded), so a resting body really rests (static friction), and only (5.11)'s
+      // elastic push sends it back up.
+      resolve_generalized_impulses(model, body, nodes, v, ws);
     } else {
       resolve_generalized_impulses(model, body, nodes, v, ws);
       // Position: translate c out of each obstacle by its deepest penetration.
