@@ -20,18 +20,11 @@ void compute_node_positions(const BodyModel& body, const Eigen::Ref<const VecX>&
                             BodyWorkspace& ws) {
   const Vec3 c = q.segment<3>(0);
   ws.R = rotation_from_quaternion(q.segment<4>(3));
-  if (body.n_s > 0) ws.q_s = q.segment(7, body.n_s);
+  ws.q_s = body.n_s > 0 ? VecX(q.segment(7, body.n_s)) : body.q_s_fixed;
+  compute_reference_positions(body, ws.q_s, ws);
   for (int i = 0; i < body.n_nodes(); ++i) {
-    Vec3 s;
-    if (body.n_s > 0) {
-      const Vec2& uv = body.tessellation.uv[i];
-      evaluate_reference_shape(body.shape, ws.q_s, uv.x(), uv.y(), 1.0, s, nullptr);
-    } else {
-      s = body.s_fixed[i];
-    }
-    Vec3 p = s;
+    Vec3 p = ws.s[i];
     if (body.has_local) p += q.segment<3>(7 + body.n_s + 3 * i);
-    ws.s[i] = s;
     ws.p[i] = p;
     ws.x[i] = c + ws.R * p;
   }
@@ -53,53 +46,73 @@ Real deepest(const Model& model, const Vec3& x, int& which, Vec3& normal) {
   return best;
 }
 
-// Sequential impulses on nu_g for a body without q_d (velocity-level contact).
+// Inelastic contact impulses on nu_g at the given nodes, mapped by L^T (P_i^T R^T in the body
+// frame) through the k x k mass block, with Coulomb's cone |j_t| <= beta_f j_n (5.12) on the
+// accumulated impulses. Jacobi, not Gauss-Seidel: every contact sees the same velocities in an
+// iteration and takes 1 / n_contacts of what would stop it, so the distribution over a
+// statically indeterminate patch does not depend on the order of the nodes (a sequential sweep
+// puts the impulse on the first nodes and gives a symmetric ball a spurious spin).
 void resolve_generalized_impulses(const Model& model, const BodyModel& body,
                                   const std::vector<int>& nodes, Eigen::Ref<VecX> v,
                                   BodyWorkspace& ws) {
   const int k = body.n_generalized();
+  const int n_c = static_cast<int>(nodes.size());
+  if (n_c == 0) return;
   const Mat3 Rt = ws.R.transpose();
-  // nu_g in the body frame.
-  VecX nu(k);
+  VecX nu(k);  // nu_g in the body frame
   nu.segment<3>(0) = Rt * v.segment<3>(0);
   nu.segment(3, k - 3) = v.segment(3, k - 3);
-  std::vector<Real> j_normal(nodes.size(), 0.0);
-  for (int iter = 0; iter < 16; ++iter) {
-    for (std::size_t c = 0; c < nodes.size(); ++c) {
-      const int i = nodes[c];
-      int o = -1;
-      Vec3 n;
-      deepest(model, ws.x[i], o, n);
-      const ObstacleModel& obs = model.obstacles[o];
-      const Vec3 n_b = Rt * n;
-      const Vec3 vel = node_from_generalized(body, ws, i, nu);  // body-frame node velocity
-      const VecX Pn = generalized_from_node(body, ws, i, n_b);
-      VecX MinvPn(Pn.size());
-      solve_generalized_mass(ws, Pn, MinvPn);
-      const Real w_n = Pn.dot(MinvPn);
-      if (!(w_n > 0)) continue;
-      // Inelastic normal impulse, accumulated and clamped to push only.
-      const Real jn_new = std::max(0.0, j_normal[c] - vel.dot(n_b) / w_n);
-      const Real dj = jn_new - j_normal[c];
-      j_normal[c] = jn_new;
-      nu += dj * MinvPn;
-      // Coulomb (5.12) at the impulse level: the tangential impulse is bounded by beta_f j_n.
-      const Vec3 vel2 = node_from_generalized(body, ws, i, nu);
-      Vec3 vt = vel2 - vel2.dot(n_b) * n_b;
-      const Real speed = vt.norm();
-      if (speed > 1e-12 && obs.friction > 0) {
-        const Vec3 t = vt / speed;
-        const VecX Pt = generalized_from_node(body, ws, i, t);
-        VecX MinvPt(Pt.size());
-        solve_generalized_mass(ws, Pt, MinvPt);
-        const Real w_t = Pt.dot(MinvPt);
+  struct ContactPoint {
+    Vec3 n_b;
+    VecX minv_pn;
+    Real w_n = 0;
+    Real friction = 0;
+    Real j_n = 0;
+    Vec3 j_t = Vec3::Zero();  // accumulated tangential impulse, body frame
+  };
+  std::vector<ContactPoint> contacts(nodes.size());
+  for (int c = 0; c < n_c; ++c) {
+    int o = -1;
+    Vec3 n;
+    deepest(model, ws.x[nodes[c]], o, n);
+    ContactPoint& cp = contacts[c];
+    cp.n_b = Rt * n;
+    cp.friction = model.obstacles[o].friction;
+    const VecX pn = generalized_from_node(body, ws, nodes[c], cp.n_b);
+    cp.minv_pn.resize(k);
+    solve_generalized_mass(ws, pn, cp.minv_pn);
+    cp.w_n = pn.dot(cp.minv_pn);
+  }
+  VecX delta(k), pt(k), minv_pt(k);
+  for (int iter = 0; iter < 24; ++iter) {
+    delta.setZero();
+    for (int c = 0; c < n_c; ++c) {
+      ContactPoint& cp = contacts[c];
+      if (!(cp.w_n > 0)) continue;
+      const Vec3 vel = node_from_generalized(body, ws, nodes[c], nu);
+      const Real j_n = std::max(0.0, cp.j_n - vel.dot(cp.n_b) / (cp.w_n * n_c));
+      delta += (j_n - cp.j_n) * cp.minv_pn;
+      cp.j_n = j_n;
+      const Vec3 v_t = vel - vel.dot(cp.n_b) * cp.n_b;
+      const Real speed = v_t.norm();
+      if (cp.friction > 0 && speed > 1e-14) {
+        const Vec3 t = v_t / speed;
+        pt = generalized_from_node(body, ws, nodes[c], t);
+        solve_generalized_mass(ws, pt, minv_pt);
+        const Real w_t = pt.dot(minv_pt);
         if (w_t > 0) {
-          const Real jt =
-              std::min(speed / w_t, obs.friction * dj > 0 ? obs.friction * jn_new : 0.0);
-          nu -= jt * MinvPt;
+          Vec3 j_t = cp.j_t - t * (speed / (w_t * n_c));
+          const Real limit = cp.friction * cp.j_n;
+          if (j_t.norm() > limit) j_t *= limit / j_t.norm();
+          const Vec3 dj = j_t - cp.j_t;
+          cp.j_t = j_t;
+          pt = generalized_from_node(body, ws, nodes[c], dj);
+          solve_generalized_mass(ws, pt, minv_pt);
+          delta += minv_pt;
         }
       }
     }
+    nu += delta;
   }
   v.segment<3>(0) = ws.R * nu.segment<3>(0);
   v.segment(3, k - 3) = nu.segment(3, k - 3);
@@ -169,12 +182,12 @@ ContactResolution resolve_penetrations(const Model& model, const BodyModel& body
   result.penetrating_nodes = static_cast<int>(nodes.size());
   if (nodes.empty() && body.has_local) {
     // No contact: still restore the mean-axis split, whose velocity form drifts between steps.
-    compute_body_kinematics(body, q, v, ws);
+    compute_body_kinematics(body, q, v, ws, false);
     factor_generalized_mass(body, ws);
     resplit_velocities(body, q, v, ws);
   }
   if (!nodes.empty()) {
-    compute_body_kinematics(body, q, v, ws);
+    compute_body_kinematics(body, q, v, ws, false);
     factor_generalized_mass(body, ws);
     if (body.has_local) {
       const Mat3 Rt = ws.R.transpose();

@@ -1,6 +1,7 @@
 #include "deform/body_dynamics.h"
 
 #include <cmath>
+#include <cstring>
 
 #include "deform/reference_shape.h"
 #include "sim/state.h"
@@ -77,11 +78,38 @@ void resize_workspace(const BodyModel& body, BodyWorkspace& ws) {
   ws.b.setZero(k);
   ws.gamma.setZero(k);
   ws.alpha.setZero(k);
+  ws.mass_J.setZero(3, body.n_s);
+  ws.mass_pJ.setZero(3, body.n_s);
+  ws.mass_JtJ.setZero(body.n_s, body.n_s);
+  ws.node_mass_3.resize(3 * n);
+  for (int i = 0; i < n; ++i) ws.node_mass_3.segment<3>(3 * i).setConstant(body.node_mass[i]);
   ws.kinematics_valid = false;
 }
 
+namespace {
+bool same_bits(const VecX& a, const VecX& b) {
+  return a.size() == b.size() &&
+         std::memcmp(a.data(), b.data(), sizeof(Real) * static_cast<std::size_t>(a.size())) == 0;
+}
+}  // namespace
+
+void compute_reference_positions(const BodyModel& body, const VecX& q_s, BodyWorkspace& ws) {
+  if (body.n_s == 0) {
+    for (int i = 0; i < body.n_nodes(); ++i) ws.s[i] = body.s_fixed[i];
+    return;
+  }
+  if (same_bits(ws.shape_key, q_s)) return;
+  for (int i = 0; i < body.n_nodes(); ++i) {
+    const Vec2& uv = body.tessellation.uv[i];
+    evaluate_reference_shape(body.shape, q_s, uv.x(), uv.y(), 1.0, ws.s[i], nullptr);
+  }
+  ws.shape_key = q_s;
+  ws.shape_has_J = false;
+}
+
 void compute_body_kinematics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
-                             const Eigen::Ref<const VecX>& v, BodyWorkspace& ws) {
+                             const Eigen::Ref<const VecX>& v, BodyWorkspace& ws,
+                             bool with_accelerations) {
   const int n = body.n_nodes();
   const BodySlices sl = slices(body);
   const Vec3 c = q.segment<3>(0);
@@ -93,7 +121,8 @@ void compute_body_kinematics(const BodyModel& body, const Eigen::Ref<const VecX>
   } else {
     ws.q_s = body.q_s_fixed;
   }
-  const bool second = body.order == DynamicsOrder::second;
+  const bool second = body.order == DynamicsOrder::second && with_accelerations;
+  const bool reuse_shape = body.n_s > 0 && ws.shape_has_J && same_bits(ws.shape_key, ws.q_s);
   // J-dot q_s-dot by a second difference of s along q_s-dot; h keeps h*q_s-dot ~ 1e-4 so the
   // truncation (h^2) and rounding (eps/h^2) errors both stay near 1e-8 relative.
   VecX q_s_dot;
@@ -113,9 +142,11 @@ void compute_body_kinematics(const BodyModel& body, const Eigen::Ref<const VecX>
     const Vec2& uv = body.tessellation.uv[i];
     Vec3 jq = Vec3::Zero();
     if (body.n_s > 0) {
-      evaluate_reference_shape(body.shape, ws.q_s, uv.x(), uv.y(), 1.0, ws.s[i], &ws.J_node);
-      ws.J.middleRows(3 * i, 3) = ws.J_node;
-      ws.p_dot[i].noalias() = ws.J_node * q_s_dot;
+      if (!reuse_shape) {
+        evaluate_reference_shape(body.shape, ws.q_s, uv.x(), uv.y(), 1.0, ws.s[i], &ws.J_node);
+        ws.J.middleRows(3 * i, 3) = ws.J_node;
+      }
+      ws.p_dot[i].noalias() = ws.J.middleRows(3 * i, 3) * q_s_dot;
       if (h > 0) {
         Vec3 s_plus, s_minus;
         evaluate_reference_shape(body.shape, q_plus, uv.x(), uv.y(), 1.0, s_plus, nullptr);
@@ -138,6 +169,10 @@ void compute_body_kinematics(const BodyModel& body, const Eigen::Ref<const VecX>
       ws.a_vp[i] = omega.cross(omega.cross(ws.p[i])) + 2.0 * omega.cross(ws.p_dot[i]) + jq;
     }
   }
+  if (body.n_s > 0 && !reuse_shape) {
+    ws.shape_key = ws.q_s;
+    ws.shape_has_J = true;
+  }
   ws.kinematics_valid = true;
 }
 
@@ -152,11 +187,15 @@ void compute_elastic_forces(const BodyModel& body, const Eigen::Ref<const VecX>&
 void factor_generalized_mass(const BodyModel& body, BodyWorkspace& ws) {
   const int n = body.n_nodes();
   const int ns = body.n_s;
-  // Blocks of (3.16) in the body frame, accumulated node by node.
+  // Blocks of (3.16) in the body frame: the 3x3 and 3 x n_s ones node by node (no temporaries),
+  // M_ss = J^T diag(m) J as one matrix product.
   Real m = 0;
   Vec3 mp = Vec3::Zero();
   Mat3 inertia = Mat3::Zero();
-  MatX mJ = MatX::Zero(3, ns), mpJ = MatX::Zero(3, ns), JtJ = MatX::Zero(ns, ns);
+  MatX& mJ = ws.mass_J;
+  MatX& mpJ = ws.mass_pJ;
+  mJ.setZero();
+  mpJ.setZero();
   for (int i = 0; i < n; ++i) {
     const Real mi = body.node_mass[i];
     const Vec3& p = ws.p[i];
@@ -166,10 +205,11 @@ void factor_generalized_mass(const BodyModel& body, BodyWorkspace& ws) {
     if (ns > 0) {
       const auto Ji = ws.J.middleRows(3 * i, 3);
       mJ.noalias() += mi * Ji;
-      mpJ.noalias() += mi * skew(p) * Ji;
-      JtJ.noalias() += mi * Ji.transpose() * Ji;
+      for (int k = 0; k < ns; ++k) mpJ.col(k) += mi * p.cross(Vec3(Ji.col(k)));
     }
   }
+  MatX& JtJ = ws.mass_JtJ;
+  if (ns > 0) JtJ.noalias() = ws.J.transpose() * ws.node_mass_3.asDiagonal() * ws.J;
   MatX& A = ws.A;
   A.setZero();
   A.block<3, 3>(0, 0) = m * Mat3::Identity();  // M_cc

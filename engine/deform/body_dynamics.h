@@ -66,7 +66,14 @@ struct BodyWorkspace {
   VecX A_inverse_eigenvalues;                   // 1 / lambda on A's range, 0 on its null space
   VecX A_tmp;                                   // k scratch
   VecX r_g, b, gamma, alpha;                    // k-vectors
+  MatX mass_J, mass_pJ;  // sum m J_i, sum m p~_i J_i (3 x n_s)
+  MatX mass_JtJ;         // sum m J_i^T J_i (n_s x n_s)
+  VecX node_mass_3;      // node masses repeated per coordinate (3 n_nodes)
   bool kinematics_valid = false;
+  // s and J depend on q_s alone: they are reused while q_s is bitwise unchanged (the contact
+  // pass and the next step's first evaluation see the q_s the integrator produced).
+  VecX shape_key;             // q_s at which s (and J if shape_has_J) were evaluated
+  bool shape_has_J = false;
   std::vector<Vec3> d_dot_body;  // d-dot per node, body frame (zero without q_d)
   Real dt = 0;                   // substep in progress (for rate-based contact damping)
   const Vec3& d_dot(const BodyModel&, int i) const { return d_dot_body[i]; }
@@ -76,8 +83,14 @@ void resize_workspace(const BodyModel& body, BodyWorkspace& ws);
 
 // Fills R, q_s, s, p, p_dot, x, x_dot, J (and a_vp for second-order bodies) from the body's slices
 // of q and v. q_s_rest must already hold the rest values in force.
+// with_accelerations = false skips a_vp (and its second difference of s) where only velocities
+// are needed.
 void compute_body_kinematics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
-                             const Eigen::Ref<const VecX>& v, BodyWorkspace& ws);
+                             const Eigen::Ref<const VecX>& v, BodyWorkspace& ws,
+                             bool with_accelerations = true);
+
+// Reference shape s at every node into ws.s (no Jacobian), reusing the cache when q_s is unchanged.
+void compute_reference_positions(const BodyModel& body, const VecX& q_s, BodyWorkspace& ws);
 
 // K_dd q_d into ws.K_q (zero for bodies without local DOFs).
 void compute_elastic_forces(const BodyModel& body, const Eigen::Ref<const VecX>& q,
