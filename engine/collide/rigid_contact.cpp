@@ -62,13 +62,14 @@ void resolve_generalized_impulses(const Model& model, const BodyModel& body,
   VecX nu(k);  // nu_g in the body frame
   nu.segment<3>(0) = Rt * v.segment<3>(0);
   nu.segment(3, k - 3) = v.segment(3, k - 3);
+  // Per contact, in the body frame: the basis (n, t1, t2), Minv P^T of each direction and the
+  // 3x3 Delassus block W = B^T P Minv P^T B, so the iterations only do vector updates.
   struct ContactPoint {
-    Vec3 n_b;
-    VecX minv_pn;
-    Real w_n = 0;
+    Mat3 basis;       // columns n, t1, t2
+    MatX minv_pb;     // k x 3
+    Mat3 W;
     Real friction = 0;
-    Real j_n = 0;
-    Vec3 j_t = Vec3::Zero();  // accumulated tangential impulse, body frame
+    Vec3 j = Vec3::Zero();  // accumulated (normal, t1, t2) impulse
   };
   std::vector<ContactPoint> contacts(nodes.size());
   for (int c = 0; c < n_c; ++c) {
@@ -76,41 +77,49 @@ void resolve_generalized_impulses(const Model& model, const BodyModel& body,
     Vec3 n;
     deepest(model, ws.x[nodes[c]], o, n);
     ContactPoint& cp = contacts[c];
-    cp.n_b = Rt * n;
+    const Vec3 n_b = Rt * n;
+    const Vec3 t1 = n_b.unitOrthogonal();
+    cp.basis.col(0) = n_b;
+    cp.basis.col(1) = t1;
+    cp.basis.col(2) = n_b.cross(t1);
     cp.friction = model.obstacles[o].friction;
-    const VecX pn = generalized_from_node(body, ws, nodes[c], cp.n_b);
-    cp.minv_pn.resize(k);
-    solve_generalized_mass(ws, pn, cp.minv_pn);
-    cp.w_n = pn.dot(cp.minv_pn);
+    cp.minv_pb.resize(k, 3);
+    for (int d = 0; d < 3; ++d) {
+      VecX col(k);
+      solve_generalized_mass(ws, generalized_from_node(body, ws, nodes[c], cp.basis.col(d)), col);
+      cp.minv_pb.col(d) = col;
+    }
+    for (int d = 0; d < 3; ++d) {
+      cp.W.col(d) = cp.basis.transpose() * node_from_generalized(body, ws, nodes[c],
+                                                                  VecX(cp.minv_pb.col(d)));
+    }
   }
-  VecX delta(k), pt(k), minv_pt(k);
-  for (int iter = 0; iter < 24; ++iter) {
+  VecX delta(k);
+  for (int iter = 0; iter < 16; ++iter) {
     delta.setZero();
     for (int c = 0; c < n_c; ++c) {
       ContactPoint& cp = contacts[c];
-      if (!(cp.w_n > 0)) continue;
-      const Vec3 vel = node_from_generalized(body, ws, nodes[c], nu);
-      const Real j_n = std::max(0.0, cp.j_n - vel.dot(cp.n_b) / (cp.w_n * n_c));
-      delta += (j_n - cp.j_n) * cp.minv_pn;
-      cp.j_n = j_n;
-      const Vec3 v_t = vel - vel.dot(cp.n_b) * cp.n_b;
-      const Real speed = v_t.norm();
-      if (cp.friction > 0 && speed > 1e-14) {
-        const Vec3 t = v_t / speed;
-        pt = generalized_from_node(body, ws, nodes[c], t);
-        solve_generalized_mass(ws, pt, minv_pt);
-        const Real w_t = pt.dot(minv_pt);
-        if (w_t > 0) {
-          Vec3 j_t = cp.j_t - t * (speed / (w_t * n_c));
-          const Real limit = cp.friction * cp.j_n;
-          if (j_t.norm() > limit) j_t *= limit / j_t.norm();
-          const Vec3 dj = j_t - cp.j_t;
-          cp.j_t = j_t;
-          pt = generalized_from_node(body, ws, nodes[c], dj);
-          solve_generalized_mass(ws, pt, minv_pt);
-          delta += minv_pt;
+      const Real w_n = cp.W(0, 0);
+      if (!(w_n > 0)) continue;
+      const Vec3 vel = cp.basis.transpose() * node_from_generalized(body, ws, nodes[c], nu);
+      Vec3 j = cp.j;
+      j[0] = std::max(0.0, j[0] - vel[0] / (w_n * n_c));
+      if (cp.friction > 0) {
+        // Stop the slip along each tangent, then clamp to the cone |j_t| <= beta_f j_n.
+        for (int d = 1; d < 3; ++d) {
+          if (cp.W(d, d) > 0) j[d] -= vel[d] / (cp.W(d, d) * n_c);
         }
+        const Real jt = std::hypot(j[1], j[2]);
+        const Real limit = cp.friction * j[0];
+        if (jt > limit) {
+          j[1] *= limit / jt;
+          j[2] *= limit / jt;
+        }
+      } else {
+        j[1] = j[2] = 0;
       }
+      delta.noalias() += cp.minv_pb * (j - cp.j);
+      cp.j = j;
     }
     nu += delta;
   }
