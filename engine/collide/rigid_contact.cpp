@@ -109,7 +109,7 @@ void resolve_generalized_impulses(const Model& model, const BodyModel& body,
         for (int d = 1; d < 3; ++d) {
           if (cp.W(d, d) > 0) j[d] -= vel[d] / (cp.W(d, d) * n_c);
         }
-        const Real jt = std::hypot(j[1], j[2]);
+        const Real jt = std::sqrt(j[1] * j[1] + j[2] * j[2]);
         const Real limit = cp.friction * j[0];
         if (jt > limit) {
           j[1] *= limit / jt;
