@@ -78,10 +78,16 @@ void apply_axis_deformation(const Eigen::Ref<const VecX>& q_s, int i, int j, int
 
 void evaluate_axis_deformations(const Eigen::Ref<const VecX>& q_s, Real u, Real v, Real w, Vec3& s,
                                 AxisDeformationJacobian* J) {
+  evaluate_axis_deformations(q_s, superquadric_angles(u, v), w, s, J);
+}
+
+void evaluate_axis_deformations(const Eigen::Ref<const VecX>& q_s,
+                                const SuperquadricAngles& angles, Real w, Vec3& s,
+                                AxisDeformationJacobian* J) {
   assert(q_s.size() == kAxisDeformationParameterCount);
   Vec3 e;
   SuperquadricJacobian J_e;
-  evaluate_superquadric(q_s, u, v, w, e, J != nullptr ? &J_e : nullptr);
+  evaluate_superquadric(q_s, angles, w, e, J != nullptr ? &J_e : nullptr);
   AxisDeformationJacobian de, dr3, dr1;
   AxisDeformationJacobian* de_ptr = nullptr;
   AxisDeformationJacobian* dr3_ptr = nullptr;

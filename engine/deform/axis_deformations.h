@@ -27,6 +27,7 @@
 #include <Eigen/Core>
 
 #include "core/types.h"
+#include "deform/superquadric.h"
 
 namespace pbm {
 
@@ -60,6 +61,9 @@ constexpr int bend_range_index(int i, int j) {
 // s = T2(T1(T3(e))) at material point (u, v, w), w > 0, a0..a3 > 0. If J != nullptr, writes
 // ds/dq_s by the chain rule through the three stages (no heap allocation).
 void evaluate_axis_deformations(const Eigen::Ref<const VecX>& q_s, Real u, Real v, Real w, Vec3& s,
+                                AxisDeformationJacobian* J);
+void evaluate_axis_deformations(const Eigen::Ref<const VecX>& q_s,
+                                const SuperquadricAngles& angles, Real w, Vec3& s,
                                 AxisDeformationJacobian* J);
 
 }  // namespace pbm

@@ -100,8 +100,7 @@ void compute_reference_positions(const BodyModel& body, const VecX& q_s, BodyWor
   }
   if (same_bits(ws.shape_key, q_s)) return;
   for (int i = 0; i < body.n_nodes(); ++i) {
-    const Vec2& uv = body.tessellation.uv[i];
-    evaluate_reference_shape(body.shape, q_s, uv.x(), uv.y(), 1.0, ws.s[i], nullptr);
+    evaluate_reference_shape(body.shape, q_s, body.node_angles[i], 1.0, ws.s[i], nullptr);
   }
   ws.shape_key = q_s;
   ws.shape_has_J = false;
@@ -139,18 +138,18 @@ void compute_body_kinematics(const BodyModel& body, const Eigen::Ref<const VecX>
   }
   const Vec3 V = ws.R.transpose() * c_dot;
   for (int i = 0; i < n; ++i) {
-    const Vec2& uv = body.tessellation.uv[i];
+    const SuperquadricAngles& angles = body.node_angles[i];
     Vec3 jq = Vec3::Zero();
     if (body.n_s > 0) {
       if (!reuse_shape) {
-        evaluate_reference_shape(body.shape, ws.q_s, uv.x(), uv.y(), 1.0, ws.s[i], &ws.J_node);
+        evaluate_reference_shape(body.shape, ws.q_s, angles, 1.0, ws.s[i], &ws.J_node);
         ws.J.middleRows(3 * i, 3) = ws.J_node;
       }
       ws.p_dot[i].noalias() = ws.J.middleRows(3 * i, 3) * q_s_dot;
       if (h > 0) {
         Vec3 s_plus, s_minus;
-        evaluate_reference_shape(body.shape, q_plus, uv.x(), uv.y(), 1.0, s_plus, nullptr);
-        evaluate_reference_shape(body.shape, q_minus, uv.x(), uv.y(), 1.0, s_minus, nullptr);
+        evaluate_reference_shape(body.shape, q_plus, angles, 1.0, s_plus, nullptr);
+        evaluate_reference_shape(body.shape, q_minus, angles, 1.0, s_minus, nullptr);
         jq = (s_plus - 2.0 * ws.s[i] + s_minus) / (h * h);
       }
     } else {

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include "core/types.h"
+#include "deform/superquadric.h"
 #include "scene/scene.h"
 
 namespace pbm {
@@ -20,6 +21,9 @@ int shape_parameter_count(ShapeKind kind);
 // caller). Finite at the poles and the seam; no heap allocation.
 void evaluate_reference_shape(ShapeKind kind, const Eigen::Ref<const VecX>& q_s, Real u, Real v,
                               Real w, Vec3& s, Mat3X* J);
+// The same with the material point's angles precomputed (superquadric_angles(u, v)).
+void evaluate_reference_shape(ShapeKind kind, const Eigen::Ref<const VecX>& q_s,
+                              const SuperquadricAngles& angles, Real w, Vec3& s, Mat3X* J);
 
 // The unit sphere: a0 = a1 = a2 = a3 = 1, eps1 = eps2 = 1, deformations 0, bend ranges 1.
 VecX default_shape_parameters(ShapeKind kind);

@@ -18,36 +18,57 @@ Real log_signed_power(Real x, Real eps) {
 }
 
 namespace {
-// sgn(x)|x|^eps and ln|x| sgn(x)|x|^eps from one log and one exp (a pow and a log per term cost
-// twice as much, and this runs for every node at every step).
-void signed_power_pair(Real x, Real eps, Real& power, Real& log_power) {
+// sgn(x)|x|^eps and ln|x| sgn(x)|x|^eps from a precomputed ln|x| and one exp (a pow and a log
+// per term cost several times as much, and this runs for every node at every step).
+void signed_power_pair(Real x, Real ln_abs_x, Real eps, Real& power, Real& log_power) {
   if (x == 0) {
     power = log_power = 0;
     return;
   }
-  const Real ln = std::log(std::abs(x));
-  const Real magnitude = std::exp(eps * ln);
+  const Real magnitude = std::exp(eps * ln_abs_x);
   power = x > 0 ? magnitude : -magnitude;
-  log_power = ln * power;
+  log_power = ln_abs_x * power;
 }
+
+Real log_abs_or_zero(Real x) { return x == 0 ? 0.0 : std::log(std::abs(x)); }
 }  // namespace
 
-SuperquadricBasis compute_superquadric_basis(Real u, Real v, Real eps1, Real eps2) {
-  const Real cos_u = std::cos(u), sin_u = std::sin(u);
-  const Real cos_v = std::cos(v), sin_v = std::sin(v);
+SuperquadricAngles superquadric_angles(Real u, Real v) {
+  SuperquadricAngles a;
+  a.cos_u = std::cos(u);
+  a.sin_u = std::sin(u);
+  a.cos_v = std::cos(v);
+  a.sin_v = std::sin(v);
+  a.ln_cos_u = log_abs_or_zero(a.cos_u);
+  a.ln_sin_u = log_abs_or_zero(a.sin_u);
+  a.ln_cos_v = log_abs_or_zero(a.cos_v);
+  a.ln_sin_v = log_abs_or_zero(a.sin_v);
+  return a;
+}
+
+SuperquadricBasis compute_superquadric_basis(const SuperquadricAngles& a, Real eps1, Real eps2) {
   SuperquadricBasis b;
-  signed_power_pair(cos_u, eps1, b.C_u, b.lnC_u);
-  signed_power_pair(sin_u, eps1, b.S_u, b.lnS_u);
-  signed_power_pair(cos_v, eps2, b.C_v, b.lnC_v);
-  signed_power_pair(sin_v, eps2, b.S_v, b.lnS_v);
+  signed_power_pair(a.cos_u, a.ln_cos_u, eps1, b.C_u, b.lnC_u);
+  signed_power_pair(a.sin_u, a.ln_sin_u, eps1, b.S_u, b.lnS_u);
+  signed_power_pair(a.cos_v, a.ln_cos_v, eps2, b.C_v, b.lnC_v);
+  signed_power_pair(a.sin_v, a.ln_sin_v, eps2, b.S_v, b.lnS_v);
   return b;
+}
+
+SuperquadricBasis compute_superquadric_basis(Real u, Real v, Real eps1, Real eps2) {
+  return compute_superquadric_basis(superquadric_angles(u, v), eps1, eps2);
 }
 
 void evaluate_superquadric(const Eigen::Ref<const VecX>& q_s, Real u, Real v, Real w, Vec3& e,
                            SuperquadricJacobian* J_e) {
+  evaluate_superquadric(q_s, superquadric_angles(u, v), w, e, J_e);
+}
+
+void evaluate_superquadric(const Eigen::Ref<const VecX>& q_s, const SuperquadricAngles& angles,
+                           Real w, Vec3& e, SuperquadricJacobian* J_e) {
   assert(q_s.size() >= 6);
   const Real a0 = q_s(0), a1 = q_s(1), a2 = q_s(2), a3 = q_s(3);
-  const SuperquadricBasis b = compute_superquadric_basis(u, v, q_s(4), q_s(5));
+  const SuperquadricBasis b = compute_superquadric_basis(angles, q_s(4), q_s(5));
   // (2.7)
   e = a0 * w * Vec3(a1 * b.C_u * b.C_v, a2 * b.C_u * b.S_v, a3 * b.S_u);
   if (J_e == nullptr) return;

@@ -30,12 +30,25 @@ struct SuperquadricBasis {
   Real lnS_v = 0;  // ln|sin v| S_v = dS_v/deps2
 };
 
+// The eps-independent part of (2.7) at one material point: cos/sin of u and v and their log
+// magnitudes (0 where the value is 0). A node's (u, v) never changes, so bodies precompute these
+// once and every step pays only one exp per term.
+struct SuperquadricAngles {
+  Real cos_u = 1, sin_u = 0, cos_v = 1, sin_v = 0;
+  Real ln_cos_u = 0, ln_sin_u = 0, ln_cos_v = 0, ln_sin_v = 0;
+};
+SuperquadricAngles superquadric_angles(Real u, Real v);
+
 // u in [-pi/2, pi/2] (latitude), v in [-pi, pi) (longitude); eps1, eps2 > 0.
 SuperquadricBasis compute_superquadric_basis(Real u, Real v, Real eps1, Real eps2);
+SuperquadricBasis compute_superquadric_basis(const SuperquadricAngles& angles, Real eps1,
+                                             Real eps2);
 
 // e of (2.7) from q_s(0..5) = (a0, a1, a2, a3, eps1, eps2) (2.8); q_s may be longer (the deformed
 // shapes append their parameters). If J_e != nullptr, writes de/dq_s(0..5) (2.9).
 void evaluate_superquadric(const Eigen::Ref<const VecX>& q_s, Real u, Real v, Real w, Vec3& e,
                            SuperquadricJacobian* J_e);
+void evaluate_superquadric(const Eigen::Ref<const VecX>& q_s, const SuperquadricAngles& angles,
+                           Real w, Vec3& e, SuperquadricJacobian* J_e);
 
 }  // namespace pbm

@@ -10,11 +10,16 @@ namespace pbm {
 
 void evaluate_taper_bend(const Eigen::Ref<const VecX>& q_s, Real u, Real v, Real w, Vec3& s,
                          TaperBendJacobian* J) {
+  evaluate_taper_bend(q_s, superquadric_angles(u, v), w, s, J);
+}
+
+void evaluate_taper_bend(const Eigen::Ref<const VecX>& q_s, const SuperquadricAngles& angles,
+                         Real w, Vec3& s, TaperBendJacobian* J) {
   assert(q_s.size() == 11);
   constexpr Real pi = std::numbers::pi;
   const Real a0 = q_s(0), a1 = q_s(1), a2 = q_s(2), a3 = q_s(3);
   const Real t1 = q_s(6), t2 = q_s(7), b1 = q_s(8), b2 = q_s(9), b3 = q_s(10);
-  const SuperquadricBasis B = compute_superquadric_basis(u, v, q_s(4), q_s(5));
+  const SuperquadricBasis B = compute_superquadric_basis(angles, q_s(4), q_s(5));
 
   // e of (2.7); e3 / (a0 a3 w) = S_u exactly, used instead of the division in the taper factors.
   const Real e1 = a0 * w * a1 * B.C_u * B.C_v;

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 
 #include "core/types.h"
+#include "deform/superquadric.h"
 
 namespace pbm {
 
@@ -14,5 +15,7 @@ using TaperBendJacobian = Eigen::Matrix<Real, 3, 11>;
 // s of (2.10) at material point (u, v, w), w > 0, a0, a3 > 0. If J != nullptr, writes ds/dq_s.
 void evaluate_taper_bend(const Eigen::Ref<const VecX>& q_s, Real u, Real v, Real w, Vec3& s,
                          TaperBendJacobian* J);
+void evaluate_taper_bend(const Eigen::Ref<const VecX>& q_s, const SuperquadricAngles& angles,
+                         Real w, Vec3& s, TaperBendJacobian* J);
 
 }  // namespace pbm

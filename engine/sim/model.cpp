@@ -68,9 +68,11 @@ BodyModel build_body(const Scene& scene, int b) {
     body.stiffness = build_membrane_stiffness(body.tessellation, body.w0, body.w1);
   // Reference shape at the initial parameters: the shape of a rigid body.
   body.s_fixed.resize(n);
+  body.node_angles.resize(n);
   for (int i = 0; i < n; ++i) {
     const Vec2& uv = body.tessellation.uv[i];
-    evaluate_reference_shape(def.shape, body.q_s_fixed, uv.x(), uv.y(), 1.0, body.s_fixed[i],
+    body.node_angles[i] = superquadric_angles(uv.x(), uv.y());
+    evaluate_reference_shape(def.shape, body.q_s_fixed, body.node_angles[i], 1.0, body.s_fixed[i],
                              nullptr);
   }
   // Inertia of the gauge direction n (deform/body_dynamics.h): omega = sqrt(n^T K_ss n / eta)

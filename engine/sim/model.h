@@ -7,6 +7,7 @@
 
 #include "core/types.h"
 #include "deform/membrane_stiffness.h"
+#include "deform/superquadric.h"
 #include "deform/tessellation.h"
 #include "scene/scene.h"
 
@@ -34,6 +35,7 @@ struct BodyModel {
   VecX parameter_inertia_floor;  // eta_i = k_s,i dt^2 added to M_ss's diagonal (n_s)
   std::vector<Vec3> s_fixed;     // rigid bodies: reference shape at each node (constant)
   Tessellation tessellation;
+  std::vector<SuperquadricAngles> node_angles;  // superquadric_angles(u_i, v_i) per node
   MembraneStiffness stiffness;  // K_dd element matrices, local bodies only
   Real w0 = 0, w1 = 0;
   VecX node_mass;    // lumped mass per node [kg] (sec. 6.1, footnote 2)
