@@ -192,12 +192,12 @@ ContactResolution resolve_penetrations(const Model& model, const BodyModel& body
   if (nodes.empty() && body.has_local) {
     // No contact: still restore the mean-axis split, whose velocity form drifts between steps.
     compute_body_kinematics(body, q, v, ws, false);
-    factor_generalized_mass(body, ws);
+    factor_generalized_mass(body, q, ws);
     resplit_velocities(body, q, v, ws);
   }
   if (!nodes.empty()) {
     compute_body_kinematics(body, q, v, ws, false);
-    factor_generalized_mass(body, ws);
+    factor_generalized_mass(body, q, ws);
     if (body.has_local) {
       const Mat3 Rt = ws.R.transpose();
       const int d_q = 7 + body.n_s, d_v = 6 + body.n_s;

@@ -183,7 +183,14 @@ void compute_elastic_forces(const BodyModel& body, const Eigen::Ref<const VecX>&
                       q.segment(7 + body.n_s, 3 * body.n_nodes()), ws.K_q);
 }
 
-void factor_generalized_mass(const BodyModel& body, BodyWorkspace& ws) {
+void factor_generalized_mass(const BodyModel& body, const Eigen::Ref<const VecX>& q,
+                             BodyWorkspace& ws) {
+  if (ws.mass_key.size() == q.size() &&
+      std::memcmp(ws.mass_key.data(), q.data(), sizeof(Real) * static_cast<std::size_t>(q.size())) ==
+          0) {
+    return;
+  }
+  ws.mass_key = q;
   const int n = body.n_nodes();
   const int ns = body.n_s;
   // Blocks of (3.16) in the body frame: the 3x3 and 3 x n_s ones node by node (no temporaries),

@@ -73,6 +73,7 @@ struct BodyWorkspace {
   // s and J depend on q_s alone: they are reused while q_s is bitwise unchanged (the contact
   // pass and the next step's first evaluation see the q_s the integrator produced).
   VecX shape_key;             // q_s at which s (and J if shape_has_J) were evaluated
+  VecX mass_key;              // body q at which A was last factored (empty = none)
   bool shape_has_J = false;
   std::vector<Vec3> d_dot_body;  // d-dot per node, body frame (zero without q_d)
   Real dt = 0;                   // substep in progress (for rate-based contact damping)
@@ -96,8 +97,11 @@ void compute_reference_positions(const BodyModel& body, const VecX& q_s, BodyWor
 void compute_elastic_forces(const BodyModel& body, const Eigen::Ref<const VecX>& q,
                             BodyWorkspace& ws);
 
-// Assembles and factors A (the k x k block) from the current kinematics.
-void factor_generalized_mass(const BodyModel& body, BodyWorkspace& ws);
+// Assembles and factors A (the k x k block) from the current kinematics, which must be those of
+// q (the body's slice). A depends on q alone, so a factorization at bitwise the same q is reused
+// (the contact pass factors the state the next step starts from).
+void factor_generalized_mass(const BodyModel& body, const Eigen::Ref<const VecX>& q,
+                             BodyWorkspace& ws);
 
 // Given ws.force (external, world), returns the body's velocity derivative (second order:
 // (c-ddot world, omega-dot body, q_s-ddot, d-ddot)) or, for first-order bodies, the velocity

@@ -78,7 +78,7 @@ void evaluate_derivative(const Model& model, const Inputs& inputs, Workspace& ws
     ws.contacts += add_contact_forces(model, body, bw);
     ws.stage_seconds[static_cast<int>(StepStage::forces)] += seconds_since(t0);
     t0 = Clock::now();
-    factor_generalized_mass(body, bw);
+    factor_generalized_mass(body, qb, bw);
     auto out = v_dot.segment(body.v_offset, body.v_size);
     solve_body_dynamics(body, qb, vb, bw, out);
     auto qd = q_dot.segment(body.q_offset, body.q_size);
