@@ -97,6 +97,7 @@ void resolve_generalized_impulses(const Model& model, const BodyModel& body,
   VecX delta(k);
   for (int iter = 0; iter < 16; ++iter) {
     delta.setZero();
+    Real change = 0, largest = 0;  // converged when the impulses stop changing
     for (int c = 0; c < n_c; ++c) {
       ContactPoint& cp = contacts[c];
       const Real w_n = cp.W(0, 0);
@@ -118,10 +119,13 @@ void resolve_generalized_impulses(const Model& model, const BodyModel& body,
       } else {
         j[1] = j[2] = 0;
       }
+      change = std::max(change, (j - cp.j).cwiseAbs().maxCoeff());
+      largest = std::max(largest, j.cwiseAbs().maxCoeff());
       delta.noalias() += cp.minv_pb * (j - cp.j);
       cp.j = j;
     }
     nu += delta;
+    if (change <= 1e-9 * largest) break;
   }
   v.segment<3>(0) = ws.R * nu.segment<3>(0);
   v.segment(3, k - 3) = nu.segment(3, k - 3);
