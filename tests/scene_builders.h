@@ -3,6 +3,7 @@
 
 #include "deform/reference_shape.h"
 #include "scene/scene.h"
+#include "sim/world.h"
 
 namespace pbm::test {
 
@@ -32,5 +33,19 @@ inline Scene free_space(BodyDef body) {
   s.bodies.push_back(std::move(body));
   return s;
 }
+
+// Model, inputs, workspace and state of one scene, ready to step. Not copyable: the workspace's
+// callbacks refer to the model and inputs it holds.
+struct Simulation {
+  explicit Simulation(const Scene& scene) : model(build_model(scene)), state(initial_state(model)) {
+    init_workspace(model, inputs, ws);
+  }
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+  const Model model;
+  const Inputs inputs;
+  Workspace ws;
+  State state;
+};
 
 }  // namespace pbm::test

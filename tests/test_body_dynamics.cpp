@@ -44,11 +44,10 @@ TEST(BodyDynamics, SpinningDeformingFreeBodyConservesMomentaAndEnergy) {
   scene.solver.integrator = IntegratorKind::rk4;
   scene.solver.dt = 2e-3;
   scene.solver.fps = 50;
-  const Model model = build_model(scene);
-  const Inputs inputs;
-  Workspace ws;
-  init_workspace(model, inputs, ws);
-  State state = initial_state(model);
+  test::Simulation sim(scene);
+  const Model& model = sim.model;
+  Workspace& ws = sim.ws;
+  State& state = sim.state;
   // Excite q_s (a1 stretched) and q_d (a bump at one node) so both deform while spinning.
   const BodyModel& b = model.bodies[0];
   state.v[6 + 1] = 0.4;
@@ -104,11 +103,10 @@ TEST(BodyDynamics, GlobalDeformationImpulseReturnsToRestValue) {
   scene.solver.integrator = IntegratorKind::rk4;
   scene.solver.dt = 2e-3;
   scene.solver.fps = 50;
-  const Model model = build_model(scene);
-  const Inputs inputs;
-  Workspace ws;
-  init_workspace(model, inputs, ws);
-  State state = initial_state(model);
+  test::Simulation sim(scene);
+  const Model& model = sim.model;
+  Workspace& ws = sim.ws;
+  State& state = sim.state;
   state.v[6 + 1] = 2.0;  // impulse on a1 (stretch along x)
   Real max_excursion = 0;
   for (int frame = 0; frame < 500; ++frame) {
@@ -145,11 +143,10 @@ TEST(BodyDynamics, FirstOrderModelReachesEquilibrium) {
   south.stiffness = 50;
   south.damping = 0;
   scene.springs = {north, south};
-  const Model model = build_model(scene);
-  const Inputs inputs;
-  Workspace ws;
-  init_workspace(model, inputs, ws);
-  State state = initial_state(model);
+  test::Simulation sim(scene);
+  const Model& model = sim.model;
+  Workspace& ws = sim.ws;
+  State& state = sim.state;
   // The speed of the very first substep: the springs' full pull against an undeformed body.
   State probe = state;
   int evaluations = 0;

@@ -21,15 +21,12 @@ struct RunResult {
 };
 
 RunResult simulate(const Scene& scene, int frames) {
-  const Model model = build_model(scene);
-  const Inputs inputs;
-  Workspace ws;
-  init_workspace(model, inputs, ws);
-  State state = initial_state(model);
+  test::Simulation sim(scene);
+  State& state = sim.state;
   RunResult run;
   bool touched = false;
   for (int f = 0; f < frames; ++f) {
-    const FrameResult r = advance_frame(model, state, ws);
+    const FrameResult r = advance_frame(sim.model, state, sim.ws);
     if (!r.ok) {
       run.ok = false;
       run.message = r.message;
