@@ -267,6 +267,21 @@ TEST(MembraneStiffness, ElementLoopEqualsAssembledMatrixAndEnergy) {
   }
 }
 
+TEST(MembraneStiffness, DiagonalIsTheAssembledDiagonal) {
+  for (const Case& c : kCases) {
+    const Tessellation t = tessellate({.kind = c.kind, .rings = c.rings, .segments = c.segments});
+    const MembraneStiffness k = build_membrane_stiffness(t, 1.1, 5.0);
+    const VecX K_diag = VecX(assemble_membrane_stiffness(t, k).diagonal());
+    const VecX diagonal = membrane_stiffness_diagonal(t, k);
+    ASSERT_EQ(diagonal.size(), t.node_count());
+    for (int i = 0; i < t.node_count(); ++i) {
+      for (int comp = 0; comp < 3; ++comp) {
+        EXPECT_NEAR(diagonal[i], K_diag[3 * i + comp], 1e-12 * K_diag.maxCoeff());
+      }
+    }
+  }
+}
+
 // For a displacement linear in u (d_1 = u at every node, d_2 = d_3 = 0) both element families
 // interpolate exactly, so q^T K_dd q is the membrane functional (4.42) itself:
 // the integral of w1 * 1 + w0 u^2 over the area the elements cover. At latitude u that area is a

@@ -10,9 +10,9 @@
 namespace pbm {
 namespace {
 
-// Share of the slip a touching node's friction may stop in one step (see add_contact_forces).
+// Share of a contact point's slip its friction may stop in one step (see add_contact_forces).
 constexpr Real kFrictionStopFraction = 0.5;
-// Share of the frame's normal velocity the contact dashpot removes per step (see below).
+// Share of a contact point's normal velocity the dashpot removes per step (see below).
 constexpr Real kContactDamping = 0.5;
 
 // Positions only (no Jacobian): the cheap pass that detects penetration.
@@ -65,8 +65,8 @@ void resolve_generalized_impulses(const Model& model, const BodyModel& body,
   // Per contact, in the body frame: the basis (n, t1, t2), Minv P^T of each direction and the
   // 3x3 Delassus block W = B^T P Minv P^T B, so the iterations only do vector updates.
   struct ContactPoint {
-    Mat3 basis;       // columns n, t1, t2
-    MatX minv_pb;     // k x 3
+    Mat3 basis;    // columns n, t1, t2
+    MatX minv_pb;  // k x 3
     Mat3 W;
     Real friction = 0;
     Vec3 j = Vec3::Zero();  // accumulated (normal, t1, t2) impulse
@@ -90,8 +90,8 @@ void resolve_generalized_impulses(const Model& model, const BodyModel& body,
       cp.minv_pb.col(d) = col;
     }
     for (int d = 0; d < 3; ++d) {
-      cp.W.col(d) = cp.basis.transpose() * node_from_generalized(body, ws, nodes[c],
-                                                                  VecX(cp.minv_pb.col(d)));
+      cp.W.col(d) =
+          cp.basis.transpose() * node_from_generalized(body, ws, nodes[c], VecX(cp.minv_pb.col(d)));
     }
   }
   VecX delta(k);
@@ -133,51 +133,118 @@ void resolve_generalized_impulses(const Model& model, const BodyModel& body,
 
 }  // namespace
 
+namespace {
+
+// Blend of the sample's triangle nodes' reference positions, body frame: within about
+// contact_sample_gap of the exact point, so it screens out the samples far from any obstacle.
+Vec3 blended_point(const ContactSample& sample, const BodyWorkspace& ws) {
+  return sample.weights[0] * ws.s[sample.nodes[0]] + sample.weights[1] * ws.s[sample.nodes[1]] +
+         sample.weights[2] * ws.s[sample.nodes[2]];
+}
+
+// Signed distance of the sample's point on the global surface c + R s(u, v) (no dent) to the
+// deepest obstacle; s is evaluated exactly only near an obstacle. Sets s (body frame), o and n.
+Real sample_distance(const Model& model, const BodyModel& body, const ContactSample& sample,
+                     const BodyWorkspace& ws, const Vec3& c, Vec3& s, int& o, Vec3& n) {
+  s = blended_point(sample, ws);
+  const Real screen = deepest(model, c + ws.R * s, o, n);
+  if (screen > 4.0 * body.contact_sample_gap * ws.q_s[0] / body.q_s_fixed[0]) return screen;
+  evaluate_reference_shape(body.shape, ws.q_s, sample.angles, 1.0, s, nullptr);
+  return deepest(model, c + ws.R * s, o, n);
+}
+
+// c, from any node's x = c + R p.
+Vec3 frame_origin(const BodyWorkspace& ws) {
+  return ws.x[0] - ws.R * ws.p[0];
+}
+
+// P^T y for a body-frame force y at a sample: (y, s x y, J_s^T y), J_s blended like s.
+void sample_generalized(const BodyModel& body, const BodyWorkspace& ws, const ContactSample& sample,
+                        const Vec3& s, const Vec3& y, VecX& out) {
+  out.segment<3>(0) = y;
+  out.segment<3>(3) = s.cross(y);
+  if (body.n_s == 0) return;
+  out.tail(body.n_s).setZero();
+  for (int m = 0; m < 3; ++m) {
+    out.tail(body.n_s).noalias() +=
+        sample.weights[m] * (ws.J.middleRows(3 * sample.nodes[m], 3).transpose() * y);
+  }
+}
+
+}  // namespace
+
 int add_contact_forces(const Model& model, const BodyModel& body, BodyWorkspace& ws) {
+  ws.contact_generalized.setZero();
+  for (int i = 0; i < body.n_nodes(); ++i) ws.contact[i] = -1;
+  if (!body.has_local || model.obstacles.empty()) return 0;
   int touching = 0;
   for (int i = 0; i < body.n_nodes(); ++i) {
-    ws.contact[i] = -1;
-    ws.contact_force[i].setZero();
-    if (!body.has_local || model.obstacles.empty()) continue;
     int o = -1;
     Vec3 n;
     if (deepest(model, ws.x[i], o, n) > kContactBand) continue;
     ws.contact[i] = o;
     ++touching;
   }
-  if (touching == 0) return 0;
-  // Both dashpots below are sized on the whole frame: shared by the touching nodes, they remove
-  // a fixed share of the frame's normal (or slip) velocity per step, whatever the node count,
-  // which keeps them explicit-stable at the book's steps.
-  const Real frame_mass_share = body.mass / touching;
-  const Real rate = ws.dt > 0 ? 1.0 / ws.dt : 0.0;
-  for (int i = 0; i < body.n_nodes(); ++i) {
-    const int o = ws.contact[i];
-    if (o < 0) continue;
-    const ObstacleModel& obs = model.obstacles[o];
-    Vec3 n;
-    signed_distance(obs, ws.x[i], n);
-    // (5.10)-(5.11): the node's elastic force, in the world frame, pushes back along n.
-    const Vec3 f_i = ws.R * ws.K_q.segment<3>(3 * i);
-    Real f_normal = obs.elasticity * std::max(0.0, f_i.dot(n));
-    // The frame's own velocity at the node (x-dot without d-dot): the projection stops the node,
-    // and a Kelvin-Voigt dashpot stops the frame bouncing on the stiff a K q_d spring (an
-    // inelastic contact, as the book's balls come to rest). It never pulls: the total is >= 0.
-    const Vec3 v_frame = ws.x_dot[i] - ws.R * ws.d_dot(body, i);
-    f_normal -= kContactDamping * frame_mass_share * rate * v_frame.dot(n);
-    f_normal = std::max(0.0, f_normal);
-    Vec3 f = f_normal * n;
-    // (5.12) on the frame's slip at the node (a rolling ball's contact nodes do not slip),
-    // capped at the force that stops the slip within one step: below that the explicit Coulomb
-    // regularization would be unstable (rate * dt >> 1 at 0.031 s).
-    const Vec3 v_p = v_frame - v_frame.dot(n) * n;
-    const Real speed = v_p.norm();
-    if (speed > 0) {
-      const Real magnitude =
-          std::min(obs.friction * f_normal, kFrictionStopFraction * frame_mass_share * rate * speed);
-      f -= magnitude * v_p / speed;
+  const Vec3 c = frame_origin(ws);
+  const Mat3 Rt = ws.R.transpose();
+  Real pressing_stiffness = 0;
+  for (const ContactSample& sample : body.contact_samples) {
+    int o;
+    Vec3 n, s;
+    if (sample_distance(model, body, sample, ws, c, s, o, n) < 0) {
+      pressing_stiffness += sample.stiffness;
     }
-    ws.contact_force[i] = f;
+  }
+  if (pressing_stiffness == 0) return touching;
+  // c-dot in the body frame, from any node's x-dot = R (V + omega x p + p-dot).
+  const Vec3 V = Rt * ws.x_dot[0] - ws.omega.cross(ws.p[0]) - ws.p_dot[0];
+  const Real rate = ws.dt > 0 ? 1.0 / ws.dt : 0.0;
+  VecX& g = ws.contact_direction;
+  for (const ContactSample& sample : body.contact_samples) {
+    Vec3 s, n;
+    int o = -1;
+    const Real phi = sample_distance(model, body, sample, ws, c, s, o, n);
+    if (phi >= 0) continue;
+    const ObstacleModel& obs = model.obstacles[o];
+    const Vec3 n_b = Rt * n;
+    // The mass this point moves with along n: through c and theta, and through every q_s
+    // parameter whose Jacobian is not 0 there (light ones, such as a squareness, make it small).
+    // Its share (by stiffness) of the patch sizes the explicit-stable springs and dashpots below.
+    sample_generalized(body, ws, sample, s, n_b, g);
+    const Real share = sample.stiffness / pressing_stiffness;
+    const Real mass_n = share / inverse_effective_mass(ws, g);
+    // (5.11): the node projected back by -phi carries the dent d = -phi n, whose elastic force is
+    // f_i = (K q_d)_i = K_ii (-phi) n (5.10) when the dent is the node's alone. Written on the
+    // global surface, it is the gradient of 0.5 a K phi^2: a potential of q, so the contact
+    // returns at most the energy it stored, where a force read from the current q_d (which the
+    // projection and the membrane keep changing) pumps energy in at every step of a rest. A
+    // spring stiffer than the step resolves is clamped to omega dt = 1.
+    Real stiffness = obs.elasticity * sample.stiffness;
+    if (rate > 0) stiffness = std::min(stiffness, mass_n * rate * rate);
+    Real f_normal = stiffness * (-phi);
+    // Kelvin-Voigt dashpot on the surface point's approach: an inelastic contact, so the book's
+    // balls come to rest. It never pulls: the total is >= 0.
+    Vec3 s_dot = Vec3::Zero();  // J_s q_s-dot
+    for (int k = 0; k < 3; ++k) {
+      const int i = sample.nodes[k];
+      s_dot += sample.weights[k] * (ws.p_dot[i] - ws.d_dot(body, i));
+    }
+    const Vec3 v_point = ws.R * (V + ws.omega.cross(s) + s_dot);
+    f_normal -= kContactDamping * mass_n * rate * v_point.dot(n);
+    f_normal = std::max(0.0, f_normal);
+    ws.contact_generalized.noalias() += f_normal * g;
+    // (5.12) on the point's slip (a rolling ball's contact points do not slip), capped at the
+    // force that stops the slip within one step: beyond it the explicit Coulomb law would
+    // reverse the slip (rate * dt >> 1 at 0.031 s).
+    const Vec3 v_p = v_point - v_point.dot(n) * n;
+    const Real speed = v_p.norm();
+    if (speed > 0 && obs.friction > 0 && f_normal > 0) {
+      sample_generalized(body, ws, sample, s, Rt * v_p / speed, g);
+      const Real mass_t = share / inverse_effective_mass(ws, g);
+      const Real magnitude =
+          std::min(obs.friction * f_normal, kFrictionStopFraction * mass_t * rate * speed);
+      ws.contact_generalized.noalias() -= magnitude * g;
+    }
   }
   return touching;
 }
@@ -216,10 +283,18 @@ ContactResolution resolve_penetrations(const Model& model, const BodyModel& body
           q.segment<3>(d_q + 3 * i) += Rt * dx;           // step 2: the new d
           ws.p[i] += Rt * dx;
           ws.x[i] += dx;
+          // An inelastic node impact, with Coulomb's law on the impulse (5.12): the slip
+          // changes by at most beta_f times the normal velocity change. Both only remove energy.
           const Real vn = ws.x_dot[i].dot(n);
           if (vn < 0) {
-            v.segment<3>(d_v + 3 * i) -= vn * (Rt * n);
-            ws.x_dot[i] -= vn * n;
+            Vec3 dv = -vn * n;
+            const Vec3 slip = ws.x_dot[i] - vn * n;
+            const Real speed = slip.norm();
+            if (speed > 0) {
+              dv -= std::min(speed, model.obstacles[o].friction * -vn) * slip / speed;
+            }
+            v.segment<3>(d_v + 3 * i) += Rt * dv;
+            ws.x_dot[i] += dv;
           }
         }
       }
@@ -227,10 +302,6 @@ ContactResolution resolve_penetrations(const Model& model, const BodyModel& body
       const Vec3 c = q.segment<3>(0);
       for (int i = 0; i < body.n_nodes(); ++i) ws.p[i] = ws.R.transpose() * (ws.x[i] - c);
       resplit_velocities(body, q, v, ws);
-      // The frame too: its approach at the touching nodes is removed by impulses (inelastic,
-      // Coulomb-bounded), so a resting body really rests (static friction), and only (5.11)'s
-      // elastic push sends it back up.
-      resolve_generalized_impulses(model, body, nodes, v, ws);
     } else {
       resolve_generalized_impulses(model, body, nodes, v, ws);
       // Position: translate c out of each obstacle by its deepest penetration.
@@ -254,6 +325,19 @@ ContactResolution resolve_penetrations(const Model& model, const BodyModel& body
   }
   if (!model.obstacles.empty()) result.min_distance = min_obstacle_distance(model, ws);
   return result;
+}
+
+Real contact_potential_energy(const Model& model, const BodyModel& body, const BodyWorkspace& ws) {
+  if (!body.has_local || model.obstacles.empty()) return 0;
+  const Vec3 c = frame_origin(ws);
+  Real energy = 0;
+  for (const ContactSample& sample : body.contact_samples) {
+    int o = -1;
+    Vec3 n, s;
+    const Real phi = sample_distance(model, body, sample, ws, c, s, o, n);
+    if (phi < 0) energy += 0.5 * model.obstacles[o].elasticity * sample.stiffness * phi * phi;
+  }
+  return energy;
 }
 
 Real min_obstacle_distance(const Model& model, const BodyWorkspace& ws) {

@@ -1,18 +1,24 @@
 // Collisions of deformable bodies with rigid obstacles (sec. 5.2.1).
 //
-// Local bodies follow the book: a penetrating node is projected along the collision normal back
-// to the surface by updating its q_d (step 1-2), and while it touches, it receives the normal
-// force f_n = a (f_i . n) n from its elastic force f_i = (K q_d)_i (5.10, 5.11) and the Coulomb
-// friction f_c = -beta_f |f_n| v_p / |v_p| (5.12). Its approaching normal velocity is removed at
-// the projection (an inelastic node impact); the velocity split is then restored (resplit).
-// The forces act on the rows of c and theta only: the projection already holds the node, and on
-// its own d row the contact stiffness a K_ii / m_i would need omega dt < 2, i.e. dt < 0.03 s for
-// the jello-ball's a = 670 (its book step is 0.031 s); through J^T they would drive the light
-// squareness modes of q_s just as hard. Through the frame the whole body's mass carries them,
-// and the c and theta rows stay exact linear and angular momentum balances.
+// Local bodies follow the book's two steps. A penetrating node is projected along the normal back
+// to the surface by updating its q_d (steps 1-2); its approaching normal velocity is removed and
+// its slip reduced by at most beta_f times that change (an inelastic impact with Coulomb's law
+// on the impulse, (5.12)); the velocity split is then restored (resplit). The obstacle's push
+// (5.11), f_n = a (f_i . n) n with f_i = (K q_d)_i (5.10), is written where the projection puts
+// the dent: at the global surface c + R s, which the dent keeps out of the obstacle. With
+// d = -phi n at one node, f_i . n = K_ii (-phi), so (5.11) becomes a spring a K (-phi) at the
+// points of the global surface inside the obstacle: the gradient of 0.5 a K phi^2, a potential of
+// q (read from the current q_d, the force would pump energy in at every step of a resting
+// contact, as the projection and the membrane keep changing q_d). K is the book's sum of K_ii
+// spread by area over three points per surface triangle (BodyModel::contact_samples). The force
+// acts through P^T = (I, s~^T, J^T) on c, theta and q_s, the rows of the global surface: on c and
+// theta alone its J^T part would be missing and the mass block's coupling would turn a push into
+// accelerations of the light q_s parameters. A Kelvin-Voigt dashpot and (5.12) on the point's
+// slip complete it; all three are sized on the mass the point moves with (g^T A^+ g), so they stay
+// explicit-stable whatever the shape's parameters.
 //
 // Rigid and global bodies have no q_d to absorb a projection: their contacts are resolved in the
-// generalized coordinates. Sequential normal + Coulomb impulses at the penetrating nodes are
+// generalized coordinates. Jacobi normal + Coulomb impulses at the penetrating nodes are
 // mapped by L^T (P_i^T R^T in the body frame) through the k x k mass block, then c is translated
 // along each obstacle's normal by the deepest remaining penetration. Either way no node ends a
 // step inside an obstacle.
@@ -28,9 +34,9 @@ inline constexpr Real kContactBand = 1e-6;
 // Nodes are projected this far outside, so rounding never leaves them at -1e-17.
 inline constexpr Real kProjectionMargin = 1e-9;
 
-// Sets ws.contact_force to (5.11) + (5.12) for the touching nodes of a local body and records the
-// obstacle in ws.contact. Needs kinematics and elastic forces. Returns the number of touching
-// nodes.
+// Sets ws.contact_generalized to (5.11) + (5.12) and the dashpot for a local body, and records
+// the obstacle each node touches in ws.contact. Needs kinematics and the factored mass block.
+// Returns the number of touching nodes.
 int add_contact_forces(const Model& model, const BodyModel& body, BodyWorkspace& ws);
 
 struct ContactResolution {
@@ -42,6 +48,10 @@ struct ContactResolution {
 // with the kinematics of the resolved state when it changed anything.
 ContactResolution resolve_penetrations(const Model& model, const BodyModel& body,
                                        Eigen::Ref<VecX> q, Eigen::Ref<VecX> v, BodyWorkspace& ws);
+
+// Energy stored in the obstacles' push (5.11) on a local body, sum of 0.5 a K_ii phi^2 over its
+// pressing frame points. Needs kinematics.
+Real contact_potential_energy(const Model& model, const BodyModel& body, const BodyWorkspace& ws);
 
 // Signed distance of the closest node to any obstacle, from ws.x.
 Real min_obstacle_distance(const Model& model, const BodyWorkspace& ws);

@@ -65,10 +65,11 @@ void resize_workspace(const BodyModel& body, BodyWorkspace& ws) {
   ws.x.assign(n, Vec3::Zero());
   ws.x_dot.assign(n, Vec3::Zero());
   ws.force.assign(n, Vec3::Zero());
-  ws.contact_force.assign(n, Vec3::Zero());
   ws.contact.assign(n, -1);
   ws.J.setZero(3 * n, body.n_s);
   ws.J_node.setZero(3, body.n_shape);
+  ws.contact_generalized.setZero(k);
+  ws.contact_direction.setZero(k);
   ws.K_q.setZero(body.has_local ? 3 * n : 0);
   ws.A.setZero(k, k);
   ws.A_eigen = Eigen::SelfAdjointEigenSolver<MatX>(k);
@@ -115,6 +116,7 @@ void compute_body_kinematics(const BodyModel& body, const Eigen::Ref<const VecX>
   ws.R = rotation_from_quaternion(q.segment<4>(3));
   const Vec3 c_dot = v.segment<3>(0);
   const Vec3 omega = v.segment<3>(3);
+  ws.omega = omega;
   if (body.n_s > 0) {
     ws.q_s = q.segment(sl.s_q, body.n_s);
   } else {
@@ -186,8 +188,8 @@ void compute_elastic_forces(const BodyModel& body, const Eigen::Ref<const VecX>&
 void factor_generalized_mass(const BodyModel& body, const Eigen::Ref<const VecX>& q,
                              BodyWorkspace& ws) {
   if (ws.mass_key.size() == q.size() &&
-      std::memcmp(ws.mass_key.data(), q.data(), sizeof(Real) * static_cast<std::size_t>(q.size())) ==
-          0) {
+      std::memcmp(ws.mass_key.data(), q.data(),
+                  sizeof(Real) * static_cast<std::size_t>(q.size())) == 0) {
     return;
   }
   ws.mass_key = q;
@@ -249,6 +251,11 @@ void solve_generalized_mass(BodyWorkspace& ws, const VecX& y, VecX& x) {
   x.noalias() = V * ws.A_tmp;
 }
 
+Real inverse_effective_mass(BodyWorkspace& ws, const VecX& g) {
+  ws.A_tmp.noalias() = ws.A_eigen.eigenvectors().transpose() * g;
+  return ws.A_tmp.cwiseAbs2().dot(ws.A_inverse_eigenvalues);
+}
+
 void solve_body_dynamics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
                          const Eigen::Ref<const VecX>& v, BodyWorkspace& ws, Eigen::Ref<VecX> out) {
   const int n = body.n_nodes();
@@ -262,15 +269,13 @@ void solve_body_dynamics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
     Vec3 r = Rt * ws.force[i];                        // f_i in the body frame (3.48)
     if (second) r -= body.node_mass[i] * ws.a_vp[i];  // g_q (3.24)
     add_Pt(body, ws, i, r, ws.r_g);
-    // Collision forces: c and theta rows only (see collide/rigid_contact.h).
-    const Vec3 fc = Rt * ws.contact_force[i];
-    ws.r_g.segment<3>(0) += fc;
-    ws.r_g.segment<3>(3) += ws.p[i].cross(fc);
     if (body.has_local) {
       r -= ws.K_q.segment<3>(3 * i);
       add_Pt(body, ws, i, r, ws.b);
     }
   }
+  // Collision forces on the rigid + global rows (see collide/rigid_contact.h).
+  ws.r_g += ws.contact_generalized;
   if (ns > 0) {
     // Global elastic force (3.33) and the damping of the parameter inertia.
     const VecX q_s = q.segment(sl.s_q, ns);

@@ -45,37 +45,40 @@ namespace pbm {
 
 // Per-body scratch, sized once (no allocation inside a step). Rebuildable at any time.
 struct BodyWorkspace {
-  Mat3 R = Mat3::Identity();        // body -> world rotation (3.7)
-  VecX q_s;                         // current global parameters (n_shape)
-  VecX q_s_rest;                    // rest values after tracks (n_shape)
-  std::vector<Vec3> s;              // reference shape at each node, body frame
-  std::vector<Vec3> p;              // s + d, body frame
-  std::vector<Vec3> p_dot;          // J q_s-dot + d-dot, body frame
-  std::vector<Vec3> a_vp;           // velocity-product acceleration a_i (3.18), body frame
-  std::vector<Vec3> x;              // world positions
-  std::vector<Vec3> x_dot;          // world velocities
-  std::vector<Vec3> force;          // external nodal forces, world frame [N]
-  std::vector<Vec3> contact_force;  // collision forces (5.11, 5.12), world frame [N]: rows of
-                                    // c and theta only (see collide/rigid_contact.h)
-  std::vector<int> contact;         // per node: index of the obstacle touched, or -1
-  MatX J;                           // 3 n_nodes x n_s, rows 3i..3i+2 = J_i (2.6)
-  Mat3X J_node;                     // 3 x n_shape scratch
-  VecX K_q;                         // K_dd q_d, body frame (3 n_nodes)
-  MatX A;                           // k x k mass block of the generalized rigid+global coordinates
+  Mat3 R = Mat3::Identity();  // body -> world rotation (3.7)
+  VecX q_s;                   // current global parameters (n_shape)
+  VecX q_s_rest;              // rest values after tracks (n_shape)
+  std::vector<Vec3> s;        // reference shape at each node, body frame
+  std::vector<Vec3> p;        // s + d, body frame
+  std::vector<Vec3> p_dot;    // J q_s-dot + d-dot, body frame
+  std::vector<Vec3> a_vp;     // velocity-product acceleration a_i (3.18), body frame
+  std::vector<Vec3> x;        // world positions
+  std::vector<Vec3> x_dot;    // world velocities
+  std::vector<Vec3> force;    // external nodal forces, world frame [N]
+  // Collision forces (5.11, 5.12) on the rigid + global rows (c in the body frame, theta, q_s),
+  // k entries (see collide/rigid_contact.h).
+  VecX contact_generalized;
+  VecX contact_direction;    // k scratch: P^T y of one contact direction
+  std::vector<int> contact;  // per node: index of the obstacle touched, or -1
+  MatX J;                    // 3 n_nodes x n_s, rows 3i..3i+2 = J_i (2.6)
+  Mat3X J_node;              // 3 x n_shape scratch
+  VecX K_q;                  // K_dd q_d, body frame (3 n_nodes)
+  MatX A;                    // k x k mass block of the generalized rigid+global coordinates
   Eigen::SelfAdjointEigenSolver<MatX> A_eigen;  // A = V diag(lambda) V^T
   VecX A_inverse_eigenvalues;                   // 1 / lambda on A's range, 0 on its null space
   VecX A_tmp;                                   // k scratch
   VecX r_g, b, gamma, alpha;                    // k-vectors
-  MatX mass_J, mass_pJ;  // sum m J_i, sum m p~_i J_i (3 x n_s)
-  MatX mass_JtJ;         // sum m J_i^T J_i (n_s x n_s)
-  VecX node_mass_3;      // node masses repeated per coordinate (3 n_nodes)
+  MatX mass_J, mass_pJ;                         // sum m J_i, sum m p~_i J_i (3 x n_s)
+  MatX mass_JtJ;                                // sum m J_i^T J_i (n_s x n_s)
+  VecX node_mass_3;                             // node masses repeated per coordinate (3 n_nodes)
   bool kinematics_valid = false;
   // s and J depend on q_s alone: they are reused while q_s is bitwise unchanged (the contact
   // pass and the next step's first evaluation see the q_s the integrator produced).
-  VecX shape_key;             // q_s at which s (and J if shape_has_J) were evaluated
-  VecX mass_key;              // body q at which A was last factored (empty = none)
+  VecX shape_key;  // q_s at which s (and J if shape_has_J) were evaluated
+  VecX mass_key;   // body q at which A was last factored (empty = none)
   bool shape_has_J = false;
   std::vector<Vec3> d_dot_body;  // d-dot per node, body frame (zero without q_d)
+  Vec3 omega = Vec3::Zero();     // angular velocity, body frame
   Real dt = 0;                   // substep in progress (for rate-based contact damping)
   const Vec3& d_dot(const BodyModel&, int i) const { return d_dot_body[i]; }
 };
@@ -102,6 +105,10 @@ void compute_elastic_forces(const BodyModel& body, const Eigen::Ref<const VecX>&
 // (the contact pass factors the state the next step starts from).
 void factor_generalized_mass(const BodyModel& body, const Eigen::Ref<const VecX>& q,
                              BodyWorkspace& ws);
+
+// g^T A^+ g: the inverse of the effective mass a generalized force direction g (k entries) meets,
+// e.g. g = P_i^T n for a push along n at node i. Needs the factored A.
+Real inverse_effective_mass(BodyWorkspace& ws, const VecX& g);
 
 // Given ws.force (external, world), returns the body's velocity derivative (second order:
 // (c-ddot world, omega-dot body, q_s-ddot, d-ddot)) or, for first-order bodies, the velocity

@@ -112,6 +112,15 @@ Eigen::SparseMatrix<double> assemble_membrane_stiffness(const Tessellation& t,
   return K;
 }
 
+VecX membrane_stiffness_diagonal(const Tessellation& t, const MembraneStiffness& k) {
+  VecX diagonal = VecX::Zero(t.node_count());
+  for (size_t e = 0; e < t.elements.size(); ++e) {
+    const Element& el = t.elements[e];
+    for (int i = 0; i < element_node_count(el.kind); ++i) diagonal[el.nodes[i]] += k.K_e[e](i, i);
+  }
+  return diagonal;
+}
+
 Real membrane_energy(const Tessellation& t, const MembraneStiffness& k,
                      const Eigen::Ref<const VecX>& q_d) {
   assert(q_d.size() == 3 * t.node_count() && k.K_e.size() == t.elements.size());

@@ -43,6 +43,10 @@ void add_membrane_forces(const Tessellation& t, const MembraneStiffness& k,
 Eigen::SparseMatrix<double> assemble_membrane_stiffness(const Tessellation& t,
                                                         const MembraneStiffness& k);
 
+// Diagonal entry (K_dd)_ii of each node (the same for its three components): the force per unit
+// displacement of node i alone.
+VecX membrane_stiffness_diagonal(const Tessellation& t, const MembraneStiffness& k);
+
 // Elastic energy 0.5 q_d^T K_dd q_d, element by element. No allocation.
 Real membrane_energy(const Tessellation& t, const MembraneStiffness& k,
                      const Eigen::Ref<const VecX>& q_d);

@@ -34,6 +34,58 @@ int nearest_node(const Tessellation& t, const Vec2& uv) {
   return best;
 }
 
+// Where obstacles push a local body (collide/rigid_contact.h): three material points per surface
+// triangle (barycentric 2/3, 1/6, 1/6: Strang-Fix's degree-2 rule), each with a third of the
+// triangle's area on the initial shape times the book's stiffness per area, sum K_ii / area.
+// Nodes alone would carry a K_ii each: densest where the (u, v) grid crowds (the poles), and few
+// enough in a contact patch that a resting ball's depth would change as one enters or leaves.
+// The points lie on the exact surface s(u, v): on the flat triangles, the equator's larger
+// chords would sit deeper than the poles' and a ball would roll toward its deepest orientation.
+void build_contact_samples(BodyModel& body) {
+  const Tessellation& t = body.tessellation;
+  body.contact_samples.clear();
+  body.contact_samples.reserve(3 * t.triangles.size());
+  Real total_area = 0, gap = 0;
+  for (const std::array<int, 3>& tri : t.triangles) {
+    const Vec3& p0 = body.s_fixed[tri[0]];
+    const Real area = 0.5 * (body.s_fixed[tri[1]] - p0).cross(body.s_fixed[tri[2]] - p0).norm();
+    total_area += area;
+    // v of a pole is arbitrary: the point's v comes from the triangle's other nodes, unwrapped
+    // across the seam.
+    Real v_ref = 0;
+    for (int k = 0; k < 3; ++k) {
+      if (tri[k] != t.south_pole && tri[k] != t.north_pole) v_ref = t.uv[tri[k]].y();
+    }
+    for (int k = 0; k < 3; ++k) {
+      ContactSample sample;
+      sample.nodes = tri;
+      sample.weights.setConstant(1.0 / 6.0);
+      sample.weights[k] = 2.0 / 3.0;
+      sample.stiffness = area / 3.0;
+      Real u = 0, v = 0, v_weight = 0;
+      Vec3 blended = Vec3::Zero();
+      for (int m = 0; m < 3; ++m) {
+        const Vec2& uv = t.uv[tri[m]];
+        u += sample.weights[m] * uv.x();
+        blended += sample.weights[m] * body.s_fixed[tri[m]];
+        if (tri[m] == t.south_pole || tri[m] == t.north_pole) continue;
+        const Real unwrapped = v_ref + std::remainder(uv.y() - v_ref, 2 * std::numbers::pi);
+        v += sample.weights[m] * unwrapped;
+        v_weight += sample.weights[m];
+      }
+      v = std::remainder(v / v_weight, 2 * std::numbers::pi);
+      sample.angles = superquadric_angles(u, v);
+      Vec3 exact;
+      evaluate_reference_shape(body.shape, body.q_s_fixed, sample.angles, 1.0, exact, nullptr);
+      gap = std::max(gap, (exact - blended).norm());
+      body.contact_samples.push_back(sample);
+    }
+  }
+  const Real per_area = membrane_stiffness_diagonal(t, body.stiffness).sum() / total_area;
+  for (ContactSample& sample : body.contact_samples) sample.stiffness *= per_area;
+  body.contact_sample_gap = gap;
+}
+
 BodyModel build_body(const Scene& scene, int b) {
   const BodyDef& def = scene.bodies[b];
   BodyModel body;
@@ -64,8 +116,9 @@ BodyModel build_body(const Scene& scene, int b) {
   body.q_s_fixed = def.q_s.size() ? def.q_s : default_shape_parameters(def.shape);
   body.q_s0 = def.q_s0.size() ? def.q_s0 : body.q_s_fixed;
   body.k_s = def.k_s.size() ? def.k_s : VecX::Zero(body.n_shape);
-  if (body.has_local)
+  if (body.has_local) {
     body.stiffness = build_membrane_stiffness(body.tessellation, body.w0, body.w1);
+  }
   // Reference shape at the initial parameters: the shape of a rigid body.
   body.s_fixed.resize(n);
   body.node_angles.resize(n);
@@ -75,6 +128,7 @@ BodyModel build_body(const Scene& scene, int b) {
     evaluate_reference_shape(def.shape, body.q_s_fixed, body.node_angles[i], 1.0, body.s_fixed[i],
                              nullptr);
   }
+  if (body.has_local) build_contact_samples(body);
   // Inertia of the gauge direction n (deform/body_dynamics.h): omega = sqrt(n^T K_ss n / eta)
   // at most 1 / (4 dt), and at least 1% of the mass times a0^2 so it is never negligible.
   // Parameters whose mass vanishes at some shapes (a bend's location and range weigh nothing

@@ -2,6 +2,7 @@
 // State layout: every body owns a slice of State::q and State::v (see BodyModel offsets).
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,16 @@ namespace pbm {
 // quaternion's 4 rates M_theta,theta = int mu B^T B is singular (G q_theta = 0), so the
 // quaternion is integrated kinematically, q_theta-dot = 1/2 q_theta (x) (0, omega), and
 // renormalized after every step (sec. 6.1).
+// A material point of the global surface where obstacles push (5.11), inside a surface triangle:
+// its (u, v), the triangle's nodes and its barycentric weights there (for a cheap first test and
+// for velocities), and its share of the contact stiffness before the obstacle's a [N/m].
+struct ContactSample {
+  std::array<int, 3> nodes{};
+  Vec3 weights = Vec3::Zero();
+  SuperquadricAngles angles;
+  Real stiffness = 0;
+};
+
 struct BodyModel {
   std::string name;
   DeformLevel level = DeformLevel::local;
@@ -36,7 +47,9 @@ struct BodyModel {
   std::vector<Vec3> s_fixed;     // rigid bodies: reference shape at each node (constant)
   Tessellation tessellation;
   std::vector<SuperquadricAngles> node_angles;  // superquadric_angles(u_i, v_i) per node
-  MembraneStiffness stiffness;  // K_dd element matrices, local bodies only
+  MembraneStiffness stiffness;                  // K_dd element matrices, local bodies only
+  std::vector<ContactSample> contact_samples;   // local bodies, see model.cpp
+  Real contact_sample_gap = 0;  // bound on |exact - blended| sample position on the initial shape
   Real w0 = 0, w1 = 0;
   VecX node_mass;    // lumped mass per node [kg] (sec. 6.1, footnote 2)
   Real mass = 0;     // sum of node_mass

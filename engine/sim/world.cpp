@@ -75,10 +75,10 @@ void evaluate_derivative(const Model& model, const Inputs& inputs, Workspace& ws
     compute_body_kinematics(body, qb, vb, bw);
     compute_elastic_forces(body, qb, bw);
     accumulate_external_forces(model, inputs, t, b, ws);
+    factor_generalized_mass(body, qb, bw);  // the contact forces need the body's mobility
     ws.contacts += add_contact_forces(model, body, bw);
     ws.stage_seconds[static_cast<int>(StepStage::forces)] += seconds_since(t0);
     t0 = Clock::now();
-    factor_generalized_mass(body, qb, bw);
     auto out = v_dot.segment(body.v_offset, body.v_size);
     solve_body_dynamics(body, qb, vb, bw, out);
     auto qd = q_dot.segment(body.q_offset, body.q_size);
@@ -232,7 +232,8 @@ void measure_state(const Model& model, const State& state, Workspace& ws, FrameS
     const auto v = state.v.segment(body.v_offset, body.v_size);
     bw.q_s_rest = ws.drive.q_s0[b];
     compute_body_kinematics(body, q, v, bw);
-    const BodyEnergy e = compute_body_energy(body, q, v, ws.drive.gravity, bw);
+    BodyEnergy e = compute_body_energy(body, q, v, ws.drive.gravity, bw);
+    e.elastic += contact_potential_energy(model, body, bw);
     stats.kinetic += e.kinetic;
     stats.elastic += e.elastic;
     stats.potential += e.potential;
