@@ -138,6 +138,37 @@ TEST(ReferenceShape, JacobianMatchesFiniteDifferencesNearPolesAndSeam) {
   }
 }
 
+// J-dot q_s-dot of (3.18) for the superquadric: its exact second derivative along r against the
+// derivative of the Jacobian along r, (J(q + h r) - J(q - h r)) r / 2h, inside and near poles.
+TEST(ReferenceShape, SuperquadricSecondDerivativeMatchesTheJacobiansDifference) {
+  std::mt19937_64 rng(13);
+  Real worst = 0;
+  for (int sample = 0; sample < 240; ++sample) {
+    const VecX q_s = random_parameters(ShapeKind::superquadric, rng);
+    VecX r(6);
+    for (int k = 0; k < 6; ++k) r(k) = uniform(rng, -1, 1);
+    Real u = uniform(rng, -pi / 2, pi / 2);
+    if (sample % 3 == 0) u = (sample % 2 == 0 ? 1 : -1) * (pi / 2 - 1e-3 * uniform(rng, 0, 1));
+    const Real v = uniform(rng, -pi, pi);
+    const Real w = uniform(rng, 0.5, 1.0);
+    const SuperquadricAngles angles = superquadric_angles(u, v);
+    const Vec3 exact = superquadric_second_derivative(q_s, angles, w, r);
+    auto Jr = [&](Real step) {
+      SuperquadricJacobian J;
+      Vec3 e;
+      evaluate_superquadric(q_s + step * r, angles, w, e, &J);
+      return Vec3(J * r);
+    };
+    const Real h = 1e-4;
+    auto central = [&](Real step) { return Vec3((Jr(step) - Jr(-step)) / (2 * step)); };
+    const Vec3 fd = (4 * central(h / 2) - central(h)) / 3;
+    const Real err = (fd - exact).norm() / std::max(Real(1), exact.norm());
+    EXPECT_LT(err, 1e-7) << "u " << u << " v " << v;
+    worst = std::max(worst, err);
+  }
+  std::printf("superquadric J-dot q-dot: max FD error %.3g\n", worst);
+}
+
 TEST(ReferenceShape, FiniteExactlyAtPolesAndSeam) {
   std::mt19937_64 rng(13);
   constexpr Real kU[3] = {-pi / 2, 0, pi / 2};

@@ -158,6 +158,38 @@ Vec3 frame_origin(const BodyWorkspace& ws) {
   return ws.x[0] - ws.R * ws.p[0];
 }
 
+// Fills ws.pressing with the samples whose point on the global surface is inside an obstacle.
+// A signed distance is 1-Lipschitz, so a sample is at least its nearest node's distance minus its
+// triangle's reach: triangles whose nodes all stand farther are skipped unevaluated.
+void gather_pressing_samples(const Model& model, const BodyModel& body, BodyWorkspace& ws,
+                             const Vec3& c) {
+  ws.pressing.clear();
+  if (!body.has_local || model.obstacles.empty()) return;
+  for (int i = 0; i < body.n_nodes(); ++i) {
+    int o;
+    Vec3 n;
+    ws.surface_distance[i] = deepest(model, c + ws.R * ws.s[i], o, n);
+  }
+  // The reach was measured on the initial shape; a0 scales it, and the margin covers the rest of
+  // a shape's change.
+  const Real scale = 2.0 * ws.q_s[0] / body.q_s_fixed[0];
+  const auto& triangles = body.tessellation.triangles;
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const Real nearest = std::min({ws.surface_distance[triangles[t][0]],
+                                   ws.surface_distance[triangles[t][1]],
+                                   ws.surface_distance[triangles[t][2]]});
+    if (nearest > scale * body.contact_triangle_reach[t]) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int index = static_cast<int>(3 * t) + k;
+      BodyWorkspace::PressingPoint point;
+      point.sample = index;
+      point.phi = sample_distance(model, body, body.contact_samples[index], ws, c, point.s,
+                                  point.obstacle, point.n);
+      if (point.phi < 0) ws.pressing.push_back(point);
+    }
+  }
+}
+
 // P^T y for a body-frame force y at a sample: (y, s x y, J_s^T y), J_s blended like s.
 void sample_generalized(const BodyModel& body, const BodyWorkspace& ws, const ContactSample& sample,
                         const Vec3& s, const Vec3& y, VecX& out) {
@@ -187,25 +219,22 @@ int add_contact_forces(const Model& model, const BodyModel& body, BodyWorkspace&
   }
   const Vec3 c = frame_origin(ws);
   const Mat3 Rt = ws.R.transpose();
+  gather_pressing_samples(model, body, ws, c);
   Real pressing_stiffness = 0;
-  for (const ContactSample& sample : body.contact_samples) {
-    int o;
-    Vec3 n, s;
-    if (sample_distance(model, body, sample, ws, c, s, o, n) < 0) {
-      pressing_stiffness += sample.stiffness;
-    }
+  for (const auto& point : ws.pressing) {
+    pressing_stiffness += body.contact_samples[point.sample].stiffness;
   }
   if (pressing_stiffness == 0) return touching;
   // c-dot in the body frame, from any node's x-dot = R (V + omega x p + p-dot).
   const Vec3 V = Rt * ws.x_dot[0] - ws.omega.cross(ws.p[0]) - ws.p_dot[0];
   const Real rate = ws.dt > 0 ? 1.0 / ws.dt : 0.0;
   VecX& g = ws.contact_direction;
-  for (const ContactSample& sample : body.contact_samples) {
-    Vec3 s, n;
-    int o = -1;
-    const Real phi = sample_distance(model, body, sample, ws, c, s, o, n);
-    if (phi >= 0) continue;
-    const ObstacleModel& obs = model.obstacles[o];
+  for (const auto& point : ws.pressing) {
+    const ContactSample& sample = body.contact_samples[point.sample];
+    const Vec3& s = point.s;
+    const Vec3& n = point.n;
+    const Real phi = point.phi;
+    const ObstacleModel& obs = model.obstacles[point.obstacle];
     const Vec3 n_b = Rt * n;
     // The mass this point moves with along n: through c and theta, and through every q_s
     // parameter whose Jacobian is not 0 there (light ones, such as a squareness, make it small).
@@ -327,15 +356,12 @@ ContactResolution resolve_penetrations(const Model& model, const BodyModel& body
   return result;
 }
 
-Real contact_potential_energy(const Model& model, const BodyModel& body, const BodyWorkspace& ws) {
-  if (!body.has_local || model.obstacles.empty()) return 0;
-  const Vec3 c = frame_origin(ws);
+Real contact_potential_energy(const Model& model, const BodyModel& body, BodyWorkspace& ws) {
+  gather_pressing_samples(model, body, ws, frame_origin(ws));
   Real energy = 0;
-  for (const ContactSample& sample : body.contact_samples) {
-    int o = -1;
-    Vec3 n, s;
-    const Real phi = sample_distance(model, body, sample, ws, c, s, o, n);
-    if (phi < 0) energy += 0.5 * model.obstacles[o].elasticity * sample.stiffness * phi * phi;
+  for (const auto& point : ws.pressing) {
+    energy += 0.5 * model.obstacles[point.obstacle].elasticity *
+              body.contact_samples[point.sample].stiffness * point.phi * point.phi;
   }
   return energy;
 }

@@ -51,7 +51,7 @@ ContactResolution resolve_penetrations(const Model& model, const BodyModel& body
 
 // Energy stored in the obstacles' push (5.11) on a local body, sum of 0.5 a K_ii phi^2 over its
 // pressing frame points. Needs kinematics.
-Real contact_potential_energy(const Model& model, const BodyModel& body, const BodyWorkspace& ws);
+Real contact_potential_energy(const Model& model, const BodyModel& body, BodyWorkspace& ws);
 
 // Signed distance of the closest node to any obstacle, from ws.x.
 Real min_obstacle_distance(const Model& model, const BodyWorkspace& ws);

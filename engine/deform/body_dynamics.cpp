@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "deform/reference_shape.h"
+#include "deform/superquadric.h"
 #include "sim/state.h"
 
 namespace pbm {
@@ -70,6 +71,9 @@ void resize_workspace(const BodyModel& body, BodyWorkspace& ws) {
   ws.J_node.setZero(3, body.n_shape);
   ws.contact_generalized.setZero(k);
   ws.contact_direction.setZero(k);
+  ws.surface_distance.assign(n, 0.0);
+  ws.pressing.clear();
+  ws.pressing.reserve(3 * 2 * static_cast<std::size_t>(n));
   ws.K_q.setZero(body.has_local ? 3 * n : 0);
   ws.A.setZero(k, k);
   ws.A_eigen = Eigen::SelfAdjointEigenSolver<MatX>(k);
@@ -124,15 +128,16 @@ void compute_body_kinematics(const BodyModel& body, const Eigen::Ref<const VecX>
   }
   const bool second = body.order == DynamicsOrder::second && with_accelerations;
   const bool reuse_shape = body.n_s > 0 && ws.shape_has_J && same_bits(ws.shape_key, ws.q_s);
-  // J-dot q_s-dot by a second difference of s along q_s-dot; h keeps h*q_s-dot ~ 1e-4 so the
-  // truncation (h^2) and rounding (eps/h^2) errors both stay near 1e-8 relative.
+  // J-dot q_s-dot: exact for the superquadric; for the deformed shapes a second difference of s
+  // along q_s-dot, h keeping h*q_s-dot ~ 1e-4 so the truncation (h^2) and rounding (eps/h^2)
+  // errors both stay near 1e-8 relative.
   VecX q_s_dot;
   Real h = 0;
   VecX q_plus, q_minus;
   if (body.n_s > 0) {
     q_s_dot = v.segment(sl.s_v, body.n_s);
     const Real vmax = q_s_dot.cwiseAbs().maxCoeff();
-    if (second && vmax > 0) {
+    if (second && vmax > 0 && body.shape != ShapeKind::superquadric) {
       h = 1e-4 / vmax;
       q_plus = ws.q_s + h * q_s_dot;
       q_minus = ws.q_s - h * q_s_dot;
@@ -148,7 +153,9 @@ void compute_body_kinematics(const BodyModel& body, const Eigen::Ref<const VecX>
         ws.J.middleRows(3 * i, 3) = ws.J_node;
       }
       ws.p_dot[i].noalias() = ws.J.middleRows(3 * i, 3) * q_s_dot;
-      if (h > 0) {
+      if (second && body.shape == ShapeKind::superquadric) {
+        jq = superquadric_second_derivative(ws.q_s, angles, 1.0, q_s_dot);
+      } else if (h > 0) {
         Vec3 s_plus, s_minus;
         evaluate_reference_shape(body.shape, q_plus, angles, 1.0, s_plus, nullptr);
         evaluate_reference_shape(body.shape, q_minus, angles, 1.0, s_minus, nullptr);

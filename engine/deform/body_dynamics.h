@@ -59,6 +59,15 @@ struct BodyWorkspace {
   // k entries (see collide/rigid_contact.h).
   VecX contact_generalized;
   VecX contact_direction;    // k scratch: P^T y of one contact direction
+  // Contact scratch (collide/rigid_contact.cpp): per node, the signed distance of c + R s_i;
+  // the samples of the global surface inside an obstacle.
+  std::vector<Real> surface_distance;
+  struct PressingPoint {
+    int sample = 0, obstacle = 0;
+    Real phi = 0;
+    Vec3 s = Vec3::Zero(), n = Vec3::Zero();  // body frame point, world normal
+  };
+  std::vector<PressingPoint> pressing;
   std::vector<int> contact;  // per node: index of the obstacle touched, or -1
   MatX J;                    // 3 n_nodes x n_s, rows 3i..3i+2 = J_i (2.6)
   Mat3X J_node;              // 3 x n_shape scratch

@@ -88,4 +88,33 @@ void evaluate_superquadric(const Eigen::Ref<const VecX>& q_s, const Superquadric
   J(2, 4) = a0 * w * a3 * b.lnS_u;
 }
 
+namespace {
+// f(q + t r) to second order in t: (f, df/dt, 1/2 d2f/dt2). e is a product of one-parameter
+// factors, so its second derivative along r is the t^2 term of the product of their series.
+struct Series2 {
+  Real f0 = 0, f1 = 0, f2 = 0;
+};
+Series2 operator*(const Series2& a, const Series2& b) {
+  return {a.f0 * b.f0, a.f0 * b.f1 + a.f1 * b.f0, a.f0 * b.f2 + a.f1 * b.f1 + a.f2 * b.f0};
+}
+// sgn(x)|x|^eps along eps + t r_eps: derivatives ln|x| P and ln|x|^2 P (0 where x = 0).
+Series2 power_series(Real power, Real log_power, Real ln_abs_x, Real r_eps) {
+  return {power, log_power * r_eps, 0.5 * ln_abs_x * log_power * r_eps * r_eps};
+}
+}  // namespace
+
+Vec3 superquadric_second_derivative(const Eigen::Ref<const VecX>& q_s,
+                                    const SuperquadricAngles& angles, Real w,
+                                    const Eigen::Ref<const VecX>& r) {
+  assert(q_s.size() >= 6 && r.size() >= 6);
+  const SuperquadricBasis b = compute_superquadric_basis(angles, q_s(4), q_s(5));
+  const Series2 a0{q_s(0), r(0), 0}, a1{q_s(1), r(1), 0}, a2{q_s(2), r(2), 0}, a3{q_s(3), r(3), 0};
+  const Series2 C_u = power_series(b.C_u, b.lnC_u, angles.ln_cos_u, r(4));
+  const Series2 S_u = power_series(b.S_u, b.lnS_u, angles.ln_sin_u, r(4));
+  const Series2 C_v = power_series(b.C_v, b.lnC_v, angles.ln_cos_v, r(5));
+  const Series2 S_v = power_series(b.S_v, b.lnS_v, angles.ln_sin_v, r(5));
+  return 2.0 * w *
+         Vec3((a0 * a1 * C_u * C_v).f2, (a0 * a2 * C_u * S_v).f2, (a0 * a3 * S_u).f2);
+}
+
 }  // namespace pbm

@@ -51,4 +51,11 @@ void evaluate_superquadric(const Eigen::Ref<const VecX>& q_s, Real u, Real v, Re
 void evaluate_superquadric(const Eigen::Ref<const VecX>& q_s, const SuperquadricAngles& angles,
                            Real w, Vec3& e, SuperquadricJacobian* J_e);
 
+// sum_ij d2e/dq_i dq_j r_i r_j over q_s(0..5) for a direction r (6 entries): with r = q_s-dot it
+// is the J-dot q_s-dot that the velocity-product acceleration of (3.18) needs, exactly, where a
+// second difference of e costs two more evaluations.
+Vec3 superquadric_second_derivative(const Eigen::Ref<const VecX>& q_s,
+                                    const SuperquadricAngles& angles, Real w,
+                                    const Eigen::Ref<const VecX>& r);
+
 }  // namespace pbm

@@ -45,11 +45,13 @@ void build_contact_samples(BodyModel& body) {
   const Tessellation& t = body.tessellation;
   body.contact_samples.clear();
   body.contact_samples.reserve(3 * t.triangles.size());
+  body.contact_triangle_reach.clear();
   Real total_area = 0, gap = 0;
   for (const std::array<int, 3>& tri : t.triangles) {
     const Vec3& p0 = body.s_fixed[tri[0]];
     const Real area = 0.5 * (body.s_fixed[tri[1]] - p0).cross(body.s_fixed[tri[2]] - p0).norm();
     total_area += area;
+    Real reach = 0;
     // v of a pole is arbitrary: the point's v comes from the triangle's other nodes, unwrapped
     // across the seam.
     Real v_ref = 0;
@@ -78,8 +80,10 @@ void build_contact_samples(BodyModel& body) {
       Vec3 exact;
       evaluate_reference_shape(body.shape, body.q_s_fixed, sample.angles, 1.0, exact, nullptr);
       gap = std::max(gap, (exact - blended).norm());
+      for (int m = 0; m < 3; ++m) reach = std::max(reach, (exact - body.s_fixed[tri[m]]).norm());
       body.contact_samples.push_back(sample);
     }
+    body.contact_triangle_reach.push_back(reach);
   }
   const Real per_area = membrane_stiffness_diagonal(t, body.stiffness).sum() / total_area;
   for (ContactSample& sample : body.contact_samples) sample.stiffness *= per_area;

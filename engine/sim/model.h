@@ -48,8 +48,10 @@ struct BodyModel {
   Tessellation tessellation;
   std::vector<SuperquadricAngles> node_angles;  // superquadric_angles(u_i, v_i) per node
   MembraneStiffness stiffness;                  // K_dd element matrices, local bodies only
-  std::vector<ContactSample> contact_samples;   // local bodies, see model.cpp
+  std::vector<ContactSample> contact_samples;  // local bodies, 3 per surface triangle, in order
   Real contact_sample_gap = 0;  // bound on |exact - blended| sample position on the initial shape
+  // Per surface triangle: how far its samples lie from its nodes on the initial shape, at most.
+  std::vector<Real> contact_triangle_reach;
   Real w0 = 0, w1 = 0;
   VecX node_mass;    // lumped mass per node [kg] (sec. 6.1, footnote 2)
   Real mass = 0;     // sum of node_mass
