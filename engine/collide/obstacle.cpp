@@ -5,12 +5,10 @@
 
 namespace pbm {
 
-Real signed_distance(const ObstacleModel& o, const Vec3& x, Vec3& normal) {
+Real box_signed_distance(const ObstacleModel& o, const Vec3& x, Vec3& normal) {
   switch (o.kind) {
     case ObstacleKind::plane:
-      // Sign of the inner product of the normal and (node - point on the plane) (sec. 5.2.1).
-      normal = o.normal;
-      return o.normal.dot(x - o.point);
+      return signed_distance(o, x, normal);
     case ObstacleKind::box: {
       const Vec3 local = o.rotation.transpose() * (x - o.point);
       const Vec3 excess = local.cwiseAbs() - o.half_extents;

@@ -6,8 +6,19 @@
 
 namespace pbm {
 
+// Box obstacles: see signed_distance.
+Real box_signed_distance(const ObstacleModel& box, const Vec3& x, Vec3& normal);
+
 // Signed distance from x to the obstacle's surface (> 0 outside) and the outward unit normal of
 // the collision plane (the tangent plane at the closest surface point, footnote 4 of sec. 5.2.1).
-Real signed_distance(const ObstacleModel& obstacle, const Vec3& x, Vec3& normal);
+// Inline: contact tests call it for every node and surface sample at every step.
+inline Real signed_distance(const ObstacleModel& obstacle, const Vec3& x, Vec3& normal) {
+  if (obstacle.kind == ObstacleKind::plane) {
+    // Sign of the inner product of the normal and (node - point on the plane) (sec. 5.2.1).
+    normal = obstacle.normal;
+    return obstacle.normal.dot(x - obstacle.point);
+  }
+  return box_signed_distance(obstacle, x, normal);
+}
 
 }  // namespace pbm

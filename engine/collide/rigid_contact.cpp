@@ -175,12 +175,12 @@ void gather_pressing_samples(const Model& model, const BodyModel& body, BodyWork
   const Real scale = 2.0 * ws.q_s[0] / body.q_s_fixed[0];
   const auto& triangles = body.tessellation.triangles;
   for (std::size_t t = 0; t < triangles.size(); ++t) {
-    const Real nearest = std::min({ws.surface_distance[triangles[t][0]],
-                                   ws.surface_distance[triangles[t][1]],
-                                   ws.surface_distance[triangles[t][2]]});
+    const Real nearest =
+        std::min({ws.surface_distance[triangles[t][0]], ws.surface_distance[triangles[t][1]],
+                  ws.surface_distance[triangles[t][2]]});
     if (nearest > scale * body.contact_triangle_reach[t]) continue;
-    for (int k = 0; k < 3; ++k) {
-      const int index = static_cast<int>(3 * t) + k;
+    for (int k = 0; k < kContactSamplesPerTriangle; ++k) {
+      const int index = static_cast<int>(kContactSamplesPerTriangle * t) + k;
       BodyWorkspace::PressingPoint point;
       point.sample = index;
       point.phi = sample_distance(model, body, body.contact_samples[index], ws, c, point.s,
@@ -190,17 +190,31 @@ void gather_pressing_samples(const Model& model, const BodyModel& body, BodyWork
   }
 }
 
-// P^T y for a body-frame force y at a sample: (y, s x y, J_s^T y), J_s blended like s.
+// P^T y for a body-frame force y at a sample: (y, s x y, J_s^T y), J_s blended like s. Written
+// out: J's rows are strided (3 n x n_s, column-major) and n_s is small.
 void sample_generalized(const BodyModel& body, const BodyWorkspace& ws, const ContactSample& sample,
-                        const Vec3& s, const Vec3& y, VecX& out) {
+                        const Vec3& s, const Vec3& y, Eigen::Ref<VecX> out) {
   out.segment<3>(0) = y;
   out.segment<3>(3) = s.cross(y);
-  if (body.n_s == 0) return;
-  out.tail(body.n_s).setZero();
-  for (int m = 0; m < 3; ++m) {
-    out.tail(body.n_s).noalias() +=
-        sample.weights[m] * (ws.J.middleRows(3 * sample.nodes[m], 3).transpose() * y);
+  const Eigen::Index stride = ws.J.rows();
+  for (int k = 0; k < body.n_s; ++k) {
+    const Real* column = ws.J.data() + k * stride;
+    Real sum = 0;
+    for (int m = 0; m < 3; ++m) {
+      const Real* row = column + 3 * sample.nodes[m];
+      sum += sample.weights[m] * (row[0] * y[0] + row[1] * y[1] + row[2] * y[2]);
+    }
+    out[6 + k] = sum;
   }
+}
+
+// Room for m columns in a scratch matrix of k rows, grown by doubling (no allocation in a steady
+// contact).
+void reserve_columns(MatX& matrix, VecX& vector, VecX& other, int k, int m) {
+  if (matrix.cols() >= m) return;
+  matrix.resize(k, 2 * m);
+  vector.resize(2 * m);
+  other.resize(2 * m);
 }
 
 }  // namespace
@@ -228,20 +242,29 @@ int add_contact_forces(const Model& model, const BodyModel& body, BodyWorkspace&
   // c-dot in the body frame, from any node's x-dot = R (V + omega x p + p-dot).
   const Vec3 V = Rt * ws.x_dot[0] - ws.omega.cross(ws.p[0]) - ws.p_dot[0];
   const Real rate = ws.dt > 0 ? 1.0 / ws.dt : 0.0;
-  VecX& g = ws.contact_direction;
-  for (const auto& point : ws.pressing) {
+  const int k = body.n_generalized();
+  const int m = static_cast<int>(ws.pressing.size());
+  reserve_columns(ws.contact_directions, ws.contact_magnitude, ws.contact_mobility, k, m);
+  auto G = ws.contact_directions.leftCols(m);
+  auto magnitude = ws.contact_magnitude.head(m);
+  auto mobility = ws.contact_mobility.head(m);
+  // The mass each point moves with along n, g^T A^+ g with g = P^T n: through c and theta, and
+  // through every q_s parameter whose Jacobian is not 0 there (light ones, such as a squareness,
+  // make it small). Its share (by stiffness) of the patch sizes the explicit-stable springs and
+  // dashpots below.
+  for (int p = 0; p < m; ++p) {
+    const auto& point = ws.pressing[p];
+    sample_generalized(body, ws, body.contact_samples[point.sample], point.s, Rt * point.n,
+                       G.col(p));
+  }
+  inverse_effective_masses(ws, G, mobility);
+  ws.slipping.clear();
+  for (int p = 0; p < m; ++p) {
+    const auto& point = ws.pressing[p];
     const ContactSample& sample = body.contact_samples[point.sample];
-    const Vec3& s = point.s;
-    const Vec3& n = point.n;
-    const Real phi = point.phi;
     const ObstacleModel& obs = model.obstacles[point.obstacle];
-    const Vec3 n_b = Rt * n;
-    // The mass this point moves with along n: through c and theta, and through every q_s
-    // parameter whose Jacobian is not 0 there (light ones, such as a squareness, make it small).
-    // Its share (by stiffness) of the patch sizes the explicit-stable springs and dashpots below.
-    sample_generalized(body, ws, sample, s, n_b, g);
     const Real share = sample.stiffness / pressing_stiffness;
-    const Real mass_n = share / inverse_effective_mass(ws, g);
+    const Real mass_n = share / mobility[p];
     // (5.11): the node projected back by -phi carries the dent d = -phi n, whose elastic force is
     // f_i = (K q_d)_i = K_ii (-phi) n (5.10) when the dent is the node's alone. Written on the
     // global surface, it is the gradient of 0.5 a K phi^2: a potential of q, so the contact
@@ -250,31 +273,51 @@ int add_contact_forces(const Model& model, const BodyModel& body, BodyWorkspace&
     // spring stiffer than the step resolves is clamped to omega dt = 1.
     Real stiffness = obs.elasticity * sample.stiffness;
     if (rate > 0) stiffness = std::min(stiffness, mass_n * rate * rate);
-    Real f_normal = stiffness * (-phi);
+    Real f_normal = stiffness * (-point.phi);
     // Kelvin-Voigt dashpot on the surface point's approach: an inelastic contact, so the book's
     // balls come to rest. It never pulls: the total is >= 0.
     Vec3 s_dot = Vec3::Zero();  // J_s q_s-dot
-    for (int k = 0; k < 3; ++k) {
-      const int i = sample.nodes[k];
-      s_dot += sample.weights[k] * (ws.p_dot[i] - ws.d_dot(body, i));
+    for (int c_k = 0; c_k < 3; ++c_k) {
+      const int i = sample.nodes[c_k];
+      s_dot += sample.weights[c_k] * (ws.p_dot[i] - ws.d_dot(body, i));
     }
-    const Vec3 v_point = ws.R * (V + ws.omega.cross(s) + s_dot);
-    f_normal -= kContactDamping * mass_n * rate * v_point.dot(n);
+    const Vec3 v_point = ws.R * (V + ws.omega.cross(point.s) + s_dot);
+    f_normal -= kContactDamping * mass_n * rate * v_point.dot(point.n);
     f_normal = std::max(0.0, f_normal);
-    ws.contact_generalized.noalias() += f_normal * g;
-    // (5.12) on the point's slip (a rolling ball's contact points do not slip), capped at the
-    // force that stops the slip within one step: beyond it the explicit Coulomb law would
-    // reverse the slip (rate * dt >> 1 at 0.031 s).
-    const Vec3 v_p = v_point - v_point.dot(n) * n;
+    magnitude[p] = f_normal;
+    const Vec3 v_p = v_point - v_point.dot(point.n) * point.n;
     const Real speed = v_p.norm();
     if (speed > 0 && obs.friction > 0 && f_normal > 0) {
-      sample_generalized(body, ws, sample, s, Rt * v_p / speed, g);
-      const Real mass_t = share / inverse_effective_mass(ws, g);
-      const Real magnitude =
-          std::min(obs.friction * f_normal, kFrictionStopFraction * mass_t * rate * speed);
-      ws.contact_generalized.noalias() -= magnitude * g;
+      BodyWorkspace::SlipPoint slip;
+      slip.sample = point.sample;
+      slip.speed = speed;
+      slip.share = share;
+      slip.limit = obs.friction * f_normal;
+      slip.s = point.s;
+      slip.t = Rt * v_p / speed;
+      ws.slipping.push_back(slip);
     }
   }
+  ws.contact_generalized.noalias() += G * magnitude;
+  // (5.12) on each point's slip (a rolling ball's contact points do not slip), capped at the
+  // force that stops the slip within one step: beyond it the explicit Coulomb law would reverse
+  // the slip (rate * dt >> 1 at 0.031 s). The cap uses the mass the point moves with along its
+  // slip, as the dashpot does along n.
+  const int m_t = static_cast<int>(ws.slipping.size());
+  auto G_t = ws.contact_directions.leftCols(m_t);
+  auto friction = ws.contact_magnitude.head(m_t);
+  auto mobility_t = ws.contact_mobility.head(m_t);
+  for (int p = 0; p < m_t; ++p) {
+    const auto& slip = ws.slipping[p];
+    sample_generalized(body, ws, body.contact_samples[slip.sample], slip.s, slip.t, G_t.col(p));
+  }
+  inverse_effective_masses(ws, G_t, mobility_t);
+  for (int p = 0; p < m_t; ++p) {
+    const auto& slip = ws.slipping[p];
+    const Real mass_t = slip.share / mobility_t[p];
+    friction[p] = -std::min(slip.limit, kFrictionStopFraction * mass_t * rate * slip.speed);
+  }
+  ws.contact_generalized.noalias() += G_t * friction;
   return touching;
 }
 

@@ -70,10 +70,11 @@ void resize_workspace(const BodyModel& body, BodyWorkspace& ws) {
   ws.J.setZero(3 * n, body.n_s);
   ws.J_node.setZero(3, body.n_shape);
   ws.contact_generalized.setZero(k);
-  ws.contact_direction.setZero(k);
   ws.surface_distance.assign(n, 0.0);
   ws.pressing.clear();
   ws.pressing.reserve(3 * 2 * static_cast<std::size_t>(n));
+  ws.slipping.clear();
+  ws.slipping.reserve(3 * 2 * static_cast<std::size_t>(n));
   ws.K_q.setZero(body.has_local ? 3 * n : 0);
   ws.A.setZero(k, k);
   ws.A_eigen = Eigen::SelfAdjointEigenSolver<MatX>(k);
@@ -258,9 +259,13 @@ void solve_generalized_mass(BodyWorkspace& ws, const VecX& y, VecX& x) {
   x.noalias() = V * ws.A_tmp;
 }
 
-Real inverse_effective_mass(BodyWorkspace& ws, const VecX& g) {
-  ws.A_tmp.noalias() = ws.A_eigen.eigenvectors().transpose() * g;
-  return ws.A_tmp.cwiseAbs2().dot(ws.A_inverse_eigenvalues);
+void inverse_effective_masses(BodyWorkspace& ws, const Eigen::Ref<const MatX>& G,
+                              Eigen::Ref<VecX> out) {
+  const Eigen::Index m = G.cols();
+  if (ws.contact_rotated.cols() < m) ws.contact_rotated.resize(G.rows(), 2 * m);
+  auto Y = ws.contact_rotated.leftCols(m);
+  Y.noalias() = ws.A_eigen.eigenvectors().transpose() * G;
+  out.noalias() = Y.cwiseAbs2().transpose() * ws.A_inverse_eigenvalues;
 }
 
 void solve_body_dynamics(const BodyModel& body, const Eigen::Ref<const VecX>& q,

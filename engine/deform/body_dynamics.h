@@ -58,7 +58,10 @@ struct BodyWorkspace {
   // Collision forces (5.11, 5.12) on the rigid + global rows (c in the body frame, theta, q_s),
   // k entries (see collide/rigid_contact.h).
   VecX contact_generalized;
-  VecX contact_direction;    // k scratch: P^T y of one contact direction
+  // Contact scratch: P^T y of each pressing point's direction (k x points, grown on demand),
+  // V^T times it, and per point a force and an inverse effective mass.
+  MatX contact_directions, contact_rotated;
+  VecX contact_magnitude, contact_mobility;
   // Contact scratch (collide/rigid_contact.cpp): per node, the signed distance of c + R s_i;
   // the samples of the global surface inside an obstacle.
   std::vector<Real> surface_distance;
@@ -68,6 +71,12 @@ struct BodyWorkspace {
     Vec3 s = Vec3::Zero(), n = Vec3::Zero();  // body frame point, world normal
   };
   std::vector<PressingPoint> pressing;
+  struct SlipPoint {
+    int sample = 0;
+    Real speed = 0, share = 0, limit = 0;     // slip speed, stiffness share, beta_f |f_n|
+    Vec3 s = Vec3::Zero(), t = Vec3::Zero();  // body frame point and slip direction
+  };
+  std::vector<SlipPoint> slipping;
   std::vector<int> contact;  // per node: index of the obstacle touched, or -1
   MatX J;                    // 3 n_nodes x n_s, rows 3i..3i+2 = J_i (2.6)
   Mat3X J_node;              // 3 x n_shape scratch
@@ -115,9 +124,11 @@ void compute_elastic_forces(const BodyModel& body, const Eigen::Ref<const VecX>&
 void factor_generalized_mass(const BodyModel& body, const Eigen::Ref<const VecX>& q,
                              BodyWorkspace& ws);
 
-// g^T A^+ g: the inverse of the effective mass a generalized force direction g (k entries) meets,
-// e.g. g = P_i^T n for a push along n at node i. Needs the factored A.
-Real inverse_effective_mass(BodyWorkspace& ws, const VecX& g);
+// g^T A^+ g for each column g of G (k x m) into out(0..m-1): the inverse of the effective mass a
+// generalized force direction meets, e.g. g = P_i^T n for a push along n at node i. One matrix
+// product for all columns. Needs the factored A; uses ws.contact_rotated.
+void inverse_effective_masses(BodyWorkspace& ws, const Eigen::Ref<const MatX>& G,
+                              Eigen::Ref<VecX> out);
 
 // Given ws.force (external, world), returns the body's velocity derivative (second order:
 // (c-ddot world, omega-dot body, q_s-ddot, d-ddot)) or, for first-order bodies, the velocity

@@ -34,9 +34,9 @@ int nearest_node(const Tessellation& t, const Vec2& uv) {
   return best;
 }
 
-// Where obstacles push a local body (collide/rigid_contact.h): three material points per surface
-// triangle (barycentric 2/3, 1/6, 1/6: Strang-Fix's degree-2 rule), each with a third of the
-// triangle's area on the initial shape times the book's stiffness per area, sum K_ii / area.
+// Where obstacles push a local body (collide/rigid_contact.h): material points in each surface
+// triangle (three: barycentric 2/3, 1/6, 1/6, Strang-Fix's degree-2 rule), each with its share of
+// the triangle's area on the initial shape times the book's stiffness per area, sum K_ii / area.
 // Nodes alone would carry a K_ii each: densest where the (u, v) grid crowds (the poles), and few
 // enough in a contact patch that a resting ball's depth would change as one enters or leaves.
 // The points lie on the exact surface s(u, v): on the flat triangles, the equator's larger
@@ -44,7 +44,7 @@ int nearest_node(const Tessellation& t, const Vec2& uv) {
 void build_contact_samples(BodyModel& body) {
   const Tessellation& t = body.tessellation;
   body.contact_samples.clear();
-  body.contact_samples.reserve(3 * t.triangles.size());
+  body.contact_samples.reserve(kContactSamplesPerTriangle * t.triangles.size());
   body.contact_triangle_reach.clear();
   Real total_area = 0, gap = 0;
   for (const std::array<int, 3>& tri : t.triangles) {
@@ -58,12 +58,16 @@ void build_contact_samples(BodyModel& body) {
     for (int k = 0; k < 3; ++k) {
       if (tri[k] != t.south_pole && tri[k] != t.north_pole) v_ref = t.uv[tri[k]].y();
     }
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < kContactSamplesPerTriangle; ++k) {
       ContactSample sample;
       sample.nodes = tri;
-      sample.weights.setConstant(1.0 / 6.0);
-      sample.weights[k] = 2.0 / 3.0;
-      sample.stiffness = area / 3.0;
+      if (kContactSamplesPerTriangle == 1) {
+        sample.weights.setConstant(1.0 / 3.0);
+      } else {
+        sample.weights.setConstant(1.0 / 6.0);
+        sample.weights[k] = 2.0 / 3.0;
+      }
+      sample.stiffness = area / kContactSamplesPerTriangle;
       Real u = 0, v = 0, v_weight = 0;
       Vec3 blended = Vec3::Zero();
       for (int m = 0; m < 3; ++m) {
