@@ -165,22 +165,32 @@ void gather_pressing_samples(const Model& model, const BodyModel& body, BodyWork
                              const Vec3& c) {
   ws.pressing.clear();
   if (!body.has_local || model.obstacles.empty()) return;
+  bool all_planes = true;
+  for (const ObstacleModel& o : model.obstacles) all_planes &= o.kind == ObstacleKind::plane;
   for (int i = 0; i < body.n_nodes(); ++i) {
     int o;
     Vec3 n;
     ws.surface_distance[i] = deepest(model, c + ws.R * ws.s[i], o, n);
   }
-  // The reach was measured on the initial shape; a0 scales it, and the margin covers the rest of
-  // a shape's change.
+  // The reach and the gap were measured on the initial shape; a0 scales them, and the factor 2
+  // covers the rest of a shape's change.
   const Real scale = 2.0 * ws.q_s[0] / body.q_s_fixed[0];
+  const Real gap = scale * body.contact_sample_gap;
   const auto& triangles = body.tessellation.triangles;
   for (std::size_t t = 0; t < triangles.size(); ++t) {
-    const Real nearest =
-        std::min({ws.surface_distance[triangles[t][0]], ws.surface_distance[triangles[t][1]],
-                  ws.surface_distance[triangles[t][2]]});
-    if (nearest > scale * body.contact_triangle_reach[t]) continue;
+    const std::array<int, 3>& tri = triangles[t];
+    const Real phi0 = ws.surface_distance[tri[0]], phi1 = ws.surface_distance[tri[1]],
+               phi2 = ws.surface_distance[tri[2]];
+    if (std::min({phi0, phi1, phi2}) > scale * body.contact_triangle_reach[t]) continue;
     for (int k = 0; k < kContactSamplesPerTriangle; ++k) {
       const int index = static_cast<int>(kContactSamplesPerTriangle * t) + k;
+      const ContactSample& sample = body.contact_samples[index];
+      // Among planes the deepest distance is a minimum of affine functions, concave: at the blend
+      // of the nodes it is at least the blend of theirs, and the exact point is within the gap.
+      if (all_planes &&
+          sample.weights[0] * phi0 + sample.weights[1] * phi1 + sample.weights[2] * phi2 > gap) {
+        continue;
+      }
       BodyWorkspace::PressingPoint point;
       point.sample = index;
       point.phi = sample_distance(model, body, body.contact_samples[index], ws, c, point.s,
@@ -324,24 +334,23 @@ int add_contact_forces(const Model& model, const BodyModel& body, BodyWorkspace&
 ContactResolution resolve_penetrations(const Model& model, const BodyModel& body,
                                        Eigen::Ref<VecX> q, Eigen::Ref<VecX> v, BodyWorkspace& ws) {
   ContactResolution result;
-  compute_node_positions(body, q, ws);
-  std::vector<int> nodes;
+  // Local bodies need their node velocities (and always a resplit); the shape and its Jacobian
+  // computed here serve the next step's first evaluation too (q_s is not changed below).
+  if (body.has_local) {
+    compute_body_kinematics(body, q, v, ws, false);
+  } else {
+    compute_node_positions(body, q, ws);
+  }
+  std::vector<int>& nodes = ws.penetrating;
+  nodes.clear();
   for (int i = 0; i < body.n_nodes() && !model.obstacles.empty(); ++i) {
     int o;
     Vec3 n;
     if (deepest(model, ws.x[i], o, n) < 0) nodes.push_back(i);
   }
   result.penetrating_nodes = static_cast<int>(nodes.size());
-  if (nodes.empty() && body.has_local) {
-    // No contact: still restore the mean-axis split, whose velocity form drifts between steps.
-    compute_body_kinematics(body, q, v, ws, false);
-    factor_generalized_mass(body, q, ws);
-    resplit_velocities(body, q, v, ws);
-  }
-  if (!nodes.empty()) {
-    compute_body_kinematics(body, q, v, ws, false);
-    factor_generalized_mass(body, q, ws);
-    if (body.has_local) {
+  if (body.has_local) {
+    if (!nodes.empty()) {
       const Mat3 Rt = ws.R.transpose();
       const int d_q = 7 + body.n_s, d_v = 6 + body.n_s;
       for (int i : nodes) {
@@ -353,7 +362,6 @@ ContactResolution resolve_penetrations(const Model& model, const BodyModel& body
           if (phi >= kProjectionMargin * 0.5) break;
           const Vec3 dx = (kProjectionMargin - phi) * n;  // step 1: project along n
           q.segment<3>(d_q + 3 * i) += Rt * dx;           // step 2: the new d
-          ws.p[i] += Rt * dx;
           ws.x[i] += dx;
           // An inelastic node impact, with Coulomb's law on the impulse (5.12): the slip
           // changes by at most beta_f times the normal velocity change. Both only remove energy.
@@ -371,28 +379,32 @@ ContactResolution resolve_penetrations(const Model& model, const BodyModel& body
         }
       }
       recenter_displacements(body, q);
-      const Vec3 c = q.segment<3>(0);
-      for (int i = 0; i < body.n_nodes(); ++i) ws.p[i] = ws.R.transpose() * (ws.x[i] - c);
-      resplit_velocities(body, q, v, ws);
-    } else {
-      resolve_generalized_impulses(model, body, nodes, v, ws);
-      // Position: translate c out of each obstacle by its deepest penetration.
-      for (int pass = 0; pass < 8; ++pass) {
-        Real worst = 0;
-        Vec3 push = Vec3::Zero();
-        for (int i = 0; i < body.n_nodes(); ++i) {
-          int o;
-          Vec3 n;
-          const Real phi = deepest(model, ws.x[i], o, n);
-          if (phi < worst) {
-            worst = phi;
-            push = (kProjectionMargin - phi) * n;
-          }
+      compute_body_kinematics(body, q, v, ws, false);  // the shape is reused: cheap
+    }
+    // With or without contact the mean-axis split is restored: its velocity form drifts between
+    // steps. The factorization at the final q is the one the next step starts with.
+    factor_generalized_mass(body, q, ws);
+    resplit_velocities(body, q, v, ws);
+  } else if (!nodes.empty()) {
+    compute_body_kinematics(body, q, v, ws, false);
+    factor_generalized_mass(body, q, ws);
+    resolve_generalized_impulses(model, body, nodes, v, ws);
+    // Position: translate c out of each obstacle by its deepest penetration.
+    for (int pass = 0; pass < 8; ++pass) {
+      Real worst = 0;
+      Vec3 push = Vec3::Zero();
+      for (int i = 0; i < body.n_nodes(); ++i) {
+        int o;
+        Vec3 n;
+        const Real phi = deepest(model, ws.x[i], o, n);
+        if (phi < worst) {
+          worst = phi;
+          push = (kProjectionMargin - phi) * n;
         }
-        if (worst >= 0) break;
-        q.segment<3>(0) += push;
-        for (Vec3& x : ws.x) x += push;
       }
+      if (worst >= 0) break;
+      q.segment<3>(0) += push;
+      for (Vec3& x : ws.x) x += push;
     }
   }
   if (!model.obstacles.empty()) result.min_distance = min_obstacle_distance(model, ws);

@@ -75,6 +75,8 @@ void resize_workspace(const BodyModel& body, BodyWorkspace& ws) {
   ws.pressing.reserve(3 * 2 * static_cast<std::size_t>(n));
   ws.slipping.clear();
   ws.slipping.reserve(3 * 2 * static_cast<std::size_t>(n));
+  ws.penetrating.clear();
+  ws.penetrating.reserve(static_cast<std::size_t>(n));
   ws.K_q.setZero(body.has_local ? 3 * n : 0);
   ws.A.setZero(k, k);
   ws.A_eigen = Eigen::SelfAdjointEigenSolver<MatX>(k);

@@ -77,11 +77,12 @@ struct BodyWorkspace {
     Vec3 s = Vec3::Zero(), t = Vec3::Zero();  // body frame point and slip direction
   };
   std::vector<SlipPoint> slipping;
-  std::vector<int> contact;  // per node: index of the obstacle touched, or -1
-  MatX J;                    // 3 n_nodes x n_s, rows 3i..3i+2 = J_i (2.6)
-  Mat3X J_node;              // 3 x n_shape scratch
-  VecX K_q;                  // K_dd q_d, body frame (3 n_nodes)
-  MatX A;                    // k x k mass block of the generalized rigid+global coordinates
+  std::vector<int> penetrating;  // nodes inside an obstacle after a step
+  std::vector<int> contact;      // per node: index of the obstacle touched, or -1
+  MatX J;                        // 3 n_nodes x n_s, rows 3i..3i+2 = J_i (2.6)
+  Mat3X J_node;                  // 3 x n_shape scratch
+  VecX K_q;                      // K_dd q_d, body frame (3 n_nodes)
+  MatX A;                        // k x k mass block of the generalized rigid+global coordinates
   Eigen::SelfAdjointEigenSolver<MatX> A_eigen;  // A = V diag(lambda) V^T
   VecX A_inverse_eigenvalues;                   // 1 / lambda on A's range, 0 on its null space
   VecX A_tmp;                                   // k scratch

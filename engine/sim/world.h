@@ -20,21 +20,6 @@ namespace pbm {
 enum class StepStage { forces, dynamics, integrate, collisions, count };
 const char* stage_name(StepStage stage);
 
-struct Workspace {
-  std::vector<BodyWorkspace> bodies;
-  IntegratorWorkspace integrator;
-  Drive drive;
-  VecX first_order_velocity;  // velocities of first-order bodies from the last evaluation
-  DerivativeFn derivative;
-  KinematicFn kinematic;
-  std::array<double, static_cast<int>(StepStage::count)> stage_seconds{};
-  int contacts = 0;  // touching nodes in the last derivative evaluation
-};
-
-// Sized for the model; binds the derivative callbacks to model, inputs and workspace, so the
-// model and inputs must outlive the workspace's use.
-void init_workspace(const Model& model, const Inputs& inputs, Workspace& ws);
-
 struct BodyFrameStats {
   VecX q_s;  // current global parameters (n_shape)
   Real kinetic = 0, elastic = 0;
@@ -53,6 +38,29 @@ struct FrameStats {
   std::array<double, static_cast<int>(StepStage::count)> stage_seconds{};
   std::vector<BodyFrameStats> bodies;
 };
+
+struct Workspace {
+  std::vector<BodyWorkspace> bodies;
+  IntegratorWorkspace integrator;
+  Drive drive;
+  VecX first_order_velocity;  // velocities of first-order bodies from the last evaluation
+  DerivativeFn derivative;
+  KinematicFn kinematic;
+  std::array<double, static_cast<int>(StepStage::count)> stage_seconds{};
+  int contacts = 0;  // touching nodes in the last derivative evaluation
+  // The measurement that ended the last frame, and the state it measured: the next frame starts
+  // from it unless the state was changed in between (a seek, an edit).
+  struct Measured {
+    bool valid = false;
+    Real time = 0;
+    VecX q, v;
+    FrameStats stats;
+  } last_measured;
+};
+
+// Sized for the model; binds the derivative callbacks to model, inputs and workspace, so the
+// model and inputs must outlive the workspace's use.
+void init_workspace(const Model& model, const Inputs& inputs, Workspace& ws);
 
 struct FrameResult {
   bool ok = true;
