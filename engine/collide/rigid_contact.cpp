@@ -200,22 +200,14 @@ void gather_pressing_samples(const Model& model, const BodyModel& body, BodyWork
   }
 }
 
-// P^T y for a body-frame force y at a sample: (y, s x y, J_s^T y), J_s blended like s. Written
-// out: J's rows are strided (3 n x n_s, column-major) and n_s is small.
+// P^T y for a body-frame force y at a sample: (y, s x y, J_s^T y), J_s blended like s.
 void sample_generalized(const BodyModel& body, const BodyWorkspace& ws, const ContactSample& sample,
                         const Vec3& s, const Vec3& y, Eigen::Ref<VecX> out) {
   out.segment<3>(0) = y;
   out.segment<3>(3) = s.cross(y);
-  const Eigen::Index stride = ws.J.rows();
-  for (int k = 0; k < body.n_s; ++k) {
-    const Real* column = ws.J.data() + k * stride;
-    Real sum = 0;
-    for (int m = 0; m < 3; ++m) {
-      const Real* row = column + 3 * sample.nodes[m];
-      sum += sample.weights[m] * (row[0] * y[0] + row[1] * y[1] + row[2] * y[2]);
-    }
-    out[6 + k] = sum;
-  }
+  if (body.n_s == 0) return;
+  out.tail(body.n_s).setZero();
+  for (int m = 0; m < 3; ++m) add_Jt_y(ws, sample.nodes[m], y, sample.weights[m], out.data() + 6);
 }
 
 // Room for m columns in a scratch matrix of k rows, grown by doubling (no allocation in a steady

@@ -81,9 +81,8 @@ void evaluate_axis_deformations(const Eigen::Ref<const VecX>& q_s, Real u, Real 
   evaluate_axis_deformations(q_s, superquadric_angles(u, v), w, s, J);
 }
 
-void evaluate_axis_deformations(const Eigen::Ref<const VecX>& q_s,
-                                const SuperquadricAngles& angles, Real w, Vec3& s,
-                                AxisDeformationJacobian* J) {
+void evaluate_axis_deformations(const Eigen::Ref<const VecX>& q_s, const SuperquadricAngles& angles,
+                                Real w, Vec3& s, AxisDeformationJacobian* J) {
   assert(q_s.size() == kAxisDeformationParameterCount);
   Vec3 e;
   SuperquadricJacobian J_e;

@@ -62,8 +62,7 @@ constexpr int bend_range_index(int i, int j) {
 // ds/dq_s by the chain rule through the three stages (no heap allocation).
 void evaluate_axis_deformations(const Eigen::Ref<const VecX>& q_s, Real u, Real v, Real w, Vec3& s,
                                 AxisDeformationJacobian* J);
-void evaluate_axis_deformations(const Eigen::Ref<const VecX>& q_s,
-                                const SuperquadricAngles& angles, Real w, Vec3& s,
-                                AxisDeformationJacobian* J);
+void evaluate_axis_deformations(const Eigen::Ref<const VecX>& q_s, const SuperquadricAngles& angles,
+                                Real w, Vec3& s, AxisDeformationJacobian* J);
 
 }  // namespace pbm

@@ -24,13 +24,13 @@ template <class Out>
 void add_Pt(const BodyModel& body, const BodyWorkspace& ws, int i, const Vec3& y, Out& out) {
   out.template segment<3>(0) += y;
   out.template segment<3>(3) += ws.p[i].cross(y);
-  if (body.n_s > 0) out.tail(body.n_s).noalias() += ws.J.middleRows(3 * i, 3).transpose() * y;
+  if (body.n_s > 0) add_Jt_y(ws, i, y, 1.0, out.data() + 6);
 }
 
 // P_i g for a k-vector g: g_c + g_omega x p_i + J_i g_s.
 Vec3 apply_P(const BodyModel& body, const BodyWorkspace& ws, int i, const VecX& g) {
   Vec3 r = g.segment<3>(0) + g.segment<3>(3).cross(ws.p[i]);
-  if (body.n_s > 0) r.noalias() += ws.J.middleRows(3 * i, 3) * g.tail(body.n_s);
+  if (body.n_s > 0) r += J_times(ws, i, g.data() + 6);
   return r;
 }
 
@@ -67,8 +67,9 @@ void resize_workspace(const BodyModel& body, BodyWorkspace& ws) {
   ws.x_dot.assign(n, Vec3::Zero());
   ws.force.assign(n, Vec3::Zero());
   ws.contact.assign(n, -1);
-  ws.J.setZero(3 * n, body.n_s);
+  ws.Jt.setZero(body.n_s, 3 * n);
   ws.J_node.setZero(3, body.n_shape);
+  ws.basis.assign(body.shape == ShapeKind::superquadric ? n : 0, SuperquadricBasis{});
   ws.contact_generalized.setZero(k);
   ws.surface_distance.assign(n, 0.0);
   ws.pressing.clear();
@@ -152,12 +153,18 @@ void compute_body_kinematics(const BodyModel& body, const Eigen::Ref<const VecX>
     Vec3 jq = Vec3::Zero();
     if (body.n_s > 0) {
       if (!reuse_shape) {
-        evaluate_reference_shape(body.shape, ws.q_s, angles, 1.0, ws.s[i], &ws.J_node);
-        ws.J.middleRows(3 * i, 3) = ws.J_node;
+        if (body.shape == ShapeKind::superquadric) {
+          SuperquadricJacobian J_e;
+          evaluate_superquadric(ws.q_s, angles, 1.0, ws.s[i], &J_e, &ws.basis[i]);
+          ws.Jt.middleCols(3 * i, 3) = J_e.transpose();
+        } else {
+          evaluate_reference_shape(body.shape, ws.q_s, angles, 1.0, ws.s[i], &ws.J_node);
+          ws.Jt.middleCols(3 * i, 3) = ws.J_node.leftCols(body.n_s).transpose();
+        }
       }
-      ws.p_dot[i].noalias() = ws.J.middleRows(3 * i, 3) * q_s_dot;
+      ws.p_dot[i] = J_times(ws, i, q_s_dot.data());
       if (second && body.shape == ShapeKind::superquadric) {
-        jq = superquadric_second_derivative(ws.q_s, angles, 1.0, q_s_dot);
+        jq = superquadric_second_derivative(ws.q_s, ws.basis[i], angles, 1.0, q_s_dot);
       } else if (h > 0) {
         Vec3 s_plus, s_minus;
         evaluate_reference_shape(body.shape, q_plus, angles, 1.0, s_plus, nullptr);
@@ -221,13 +228,16 @@ void factor_generalized_mass(const BodyModel& body, const Eigen::Ref<const VecX>
     mp += mi * p;
     inertia += mi * (p.squaredNorm() * Mat3::Identity() - p * p.transpose());
     if (ns > 0) {
-      const auto Ji = ws.J.middleRows(3 * i, 3);
-      mJ.noalias() += mi * Ji;
-      for (int k = 0; k < ns; ++k) mpJ.col(k) += mi * p.cross(Vec3(Ji.col(k)));
+      const Real* b = ws.Jt.data() + 3 * i * ns;  // J_i^T, n_s x 3
+      for (int k = 0; k < ns; ++k) {
+        const Vec3 Jik(b[k], b[ns + k], b[2 * ns + k]);  // column k of J_i
+        mJ.col(k) += mi * Jik;
+        mpJ.col(k) += mi * p.cross(Jik);
+      }
     }
   }
   MatX& JtJ = ws.mass_JtJ;
-  if (ns > 0) JtJ.noalias() = ws.J.transpose() * ws.node_mass_3.asDiagonal() * ws.J;
+  if (ns > 0) JtJ.noalias() = ws.Jt * ws.node_mass_3.asDiagonal() * ws.Jt.transpose();
   MatX& A = ws.A;
   A.setZero();
   A.block<3, 3>(0, 0) = m * Mat3::Identity();  // M_cc

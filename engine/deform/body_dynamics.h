@@ -79,10 +79,13 @@ struct BodyWorkspace {
   std::vector<SlipPoint> slipping;
   std::vector<int> penetrating;  // nodes inside an obstacle after a step
   std::vector<int> contact;      // per node: index of the obstacle touched, or -1
-  MatX J;                        // 3 n_nodes x n_s, rows 3i..3i+2 = J_i (2.6)
-  Mat3X J_node;                  // 3 x n_shape scratch
-  VecX K_q;                      // K_dd q_d, body frame (3 n_nodes)
-  MatX A;                        // k x k mass block of the generalized rigid+global coordinates
+  // J_i^T of (2.6) for every node, n_s x 3 n_nodes: node i's block is columns 3i..3i+2, one
+  // contiguous n_s x 3 run (see add_Jt_y and J_times).
+  MatX Jt;
+  Mat3X J_node;                          // 3 x n_shape scratch
+  std::vector<SuperquadricBasis> basis;  // superquadric bodies: per node, with s and J
+  VecX K_q;                              // K_dd q_d, body frame (3 n_nodes)
+  MatX A;  // k x k mass block of the generalized rigid+global coordinates
   Eigen::SelfAdjointEigenSolver<MatX> A_eigen;  // A = V diag(lambda) V^T
   VecX A_inverse_eigenvalues;                   // 1 / lambda on A's range, 0 on its null space
   VecX A_tmp;                                   // k scratch
@@ -103,6 +106,29 @@ struct BodyWorkspace {
 };
 
 void resize_workspace(const BodyModel& body, BodyWorkspace& ws);
+
+// out(0..n_s-1) += w J_i^T y, written out: n_s is small and known only at run time, where Eigen's
+// dynamic products cost more than the arithmetic.
+inline void add_Jt_y(const BodyWorkspace& ws, int i, const Vec3& y, Real w, Real* out) {
+  const Eigen::Index ns = ws.Jt.rows();
+  const Real* b = ws.Jt.data() + 3 * i * ns;
+  const Vec3 wy = w * y;
+  for (Eigen::Index k = 0; k < ns; ++k)
+    out[k] += b[k] * wy[0] + b[ns + k] * wy[1] + b[2 * ns + k] * wy[2];
+}
+
+// J_i g for g of n_s entries.
+inline Vec3 J_times(const BodyWorkspace& ws, int i, const Real* g) {
+  const Eigen::Index ns = ws.Jt.rows();
+  const Real* b = ws.Jt.data() + 3 * i * ns;
+  Real x = 0, y = 0, z = 0;
+  for (Eigen::Index k = 0; k < ns; ++k) {
+    x += b[k] * g[k];
+    y += b[ns + k] * g[k];
+    z += b[2 * ns + k] * g[k];
+  }
+  return Vec3(x, y, z);
+}
 
 // Fills R, q_s, s, p, p_dot, x, x_dot, J (and a_vp for second-order bodies) from the body's slices
 // of q and v. q_s_rest must already hold the rest values in force.

@@ -30,7 +30,9 @@ void signed_power_pair(Real x, Real ln_abs_x, Real eps, Real& power, Real& log_p
   log_power = ln_abs_x * power;
 }
 
-Real log_abs_or_zero(Real x) { return x == 0 ? 0.0 : std::log(std::abs(x)); }
+Real log_abs_or_zero(Real x) {
+  return x == 0 ? 0.0 : std::log(std::abs(x));
+}
 }  // namespace
 
 SuperquadricAngles superquadric_angles(Real u, Real v) {
@@ -65,10 +67,11 @@ void evaluate_superquadric(const Eigen::Ref<const VecX>& q_s, Real u, Real v, Re
 }
 
 void evaluate_superquadric(const Eigen::Ref<const VecX>& q_s, const SuperquadricAngles& angles,
-                           Real w, Vec3& e, SuperquadricJacobian* J_e) {
+                           Real w, Vec3& e, SuperquadricJacobian* J_e, SuperquadricBasis* basis) {
   assert(q_s.size() >= 6);
   const Real a0 = q_s(0), a1 = q_s(1), a2 = q_s(2), a3 = q_s(3);
   const SuperquadricBasis b = compute_superquadric_basis(angles, q_s(4), q_s(5));
+  if (basis != nullptr) *basis = b;
   // (2.7)
   e = a0 * w * Vec3(a1 * b.C_u * b.C_v, a2 * b.C_u * b.S_v, a3 * b.S_u);
   if (J_e == nullptr) return;
@@ -106,15 +109,20 @@ Series2 power_series(Real power, Real log_power, Real ln_abs_x, Real r_eps) {
 Vec3 superquadric_second_derivative(const Eigen::Ref<const VecX>& q_s,
                                     const SuperquadricAngles& angles, Real w,
                                     const Eigen::Ref<const VecX>& r) {
+  return superquadric_second_derivative(q_s, compute_superquadric_basis(angles, q_s(4), q_s(5)),
+                                        angles, w, r);
+}
+
+Vec3 superquadric_second_derivative(const Eigen::Ref<const VecX>& q_s, const SuperquadricBasis& b,
+                                    const SuperquadricAngles& angles, Real w,
+                                    const Eigen::Ref<const VecX>& r) {
   assert(q_s.size() >= 6 && r.size() >= 6);
-  const SuperquadricBasis b = compute_superquadric_basis(angles, q_s(4), q_s(5));
   const Series2 a0{q_s(0), r(0), 0}, a1{q_s(1), r(1), 0}, a2{q_s(2), r(2), 0}, a3{q_s(3), r(3), 0};
   const Series2 C_u = power_series(b.C_u, b.lnC_u, angles.ln_cos_u, r(4));
   const Series2 S_u = power_series(b.S_u, b.lnS_u, angles.ln_sin_u, r(4));
   const Series2 C_v = power_series(b.C_v, b.lnC_v, angles.ln_cos_v, r(5));
   const Series2 S_v = power_series(b.S_v, b.lnS_v, angles.ln_sin_v, r(5));
-  return 2.0 * w *
-         Vec3((a0 * a1 * C_u * C_v).f2, (a0 * a2 * C_u * S_v).f2, (a0 * a3 * S_u).f2);
+  return 2.0 * w * Vec3((a0 * a1 * C_u * C_v).f2, (a0 * a2 * C_u * S_v).f2, (a0 * a3 * S_u).f2);
 }
 
 }  // namespace pbm

@@ -49,12 +49,17 @@ SuperquadricBasis compute_superquadric_basis(const SuperquadricAngles& angles, R
 void evaluate_superquadric(const Eigen::Ref<const VecX>& q_s, Real u, Real v, Real w, Vec3& e,
                            SuperquadricJacobian* J_e);
 void evaluate_superquadric(const Eigen::Ref<const VecX>& q_s, const SuperquadricAngles& angles,
-                           Real w, Vec3& e, SuperquadricJacobian* J_e);
+                           Real w, Vec3& e, SuperquadricJacobian* J_e,
+                           SuperquadricBasis* basis = nullptr);
 
 // sum_ij d2e/dq_i dq_j r_i r_j over q_s(0..5) for a direction r (6 entries): with r = q_s-dot it
 // is the J-dot q_s-dot that the velocity-product acceleration of (3.18) needs, exactly, where a
 // second difference of e costs two more evaluations.
 Vec3 superquadric_second_derivative(const Eigen::Ref<const VecX>& q_s,
+                                    const SuperquadricAngles& angles, Real w,
+                                    const Eigen::Ref<const VecX>& r);
+// The same from the basis at q_s's eps1, eps2 (as evaluate_superquadric returned it): no exp.
+Vec3 superquadric_second_derivative(const Eigen::Ref<const VecX>& q_s, const SuperquadricBasis& b,
                                     const SuperquadricAngles& angles, Real w,
                                     const Eigen::Ref<const VecX>& r);
 
