@@ -70,6 +70,8 @@ void resize_workspace(const BodyModel& body, BodyWorkspace& ws) {
   ws.Jt.setZero(body.n_s, 3 * n);
   ws.J_node.setZero(3, body.n_shape);
   ws.basis.assign(body.shape == ShapeKind::superquadric ? n : 0, SuperquadricBasis{});
+  ws.u_powers.assign(body.grid_u.size(), SignedPowers{});
+  ws.v_powers.assign(body.grid_v.size(), SignedPowers{});
   ws.contact_generalized.setZero(k);
   ws.surface_distance.assign(n, 0.0);
   ws.pressing.clear();
@@ -102,14 +104,34 @@ bool same_bits(const VecX& a, const VecX& b) {
 }
 }  // namespace
 
+void compute_node_bases(const BodyModel& body, const VecX& q_s, BodyWorkspace& ws) {
+  for (std::size_t k = 0; k < body.grid_u.size(); ++k) {
+    ws.u_powers[k] = latitude_powers(body.grid_u[k], q_s(4));
+  }
+  for (std::size_t k = 0; k < body.grid_v.size(); ++k) {
+    ws.v_powers[k] = longitude_powers(body.grid_v[k], q_s(5));
+  }
+  for (int i = 0; i < body.n_nodes(); ++i) {
+    const std::array<int, 2>& g = body.node_grid[i];
+    ws.basis[i] = combine_powers(ws.u_powers[g[0]], ws.v_powers[g[1]]);
+  }
+}
+
 void compute_reference_positions(const BodyModel& body, const VecX& q_s, BodyWorkspace& ws) {
   if (body.n_s == 0) {
     for (int i = 0; i < body.n_nodes(); ++i) ws.s[i] = body.s_fixed[i];
     return;
   }
   if (same_bits(ws.shape_key, q_s)) return;
-  for (int i = 0; i < body.n_nodes(); ++i) {
-    evaluate_reference_shape(body.shape, q_s, body.node_angles[i], 1.0, ws.s[i], nullptr);
+  if (body.shape == ShapeKind::superquadric) {
+    compute_node_bases(body, q_s, ws);
+    for (int i = 0; i < body.n_nodes(); ++i) {
+      evaluate_superquadric(q_s, ws.basis[i], 1.0, ws.s[i], nullptr);
+    }
+  } else {
+    for (int i = 0; i < body.n_nodes(); ++i) {
+      evaluate_reference_shape(body.shape, q_s, body.node_angles[i], 1.0, ws.s[i], nullptr);
+    }
   }
   ws.shape_key = q_s;
   ws.shape_has_J = false;
@@ -132,6 +154,9 @@ void compute_body_kinematics(const BodyModel& body, const Eigen::Ref<const VecX>
   }
   const bool second = body.order == DynamicsOrder::second && with_accelerations;
   const bool reuse_shape = body.n_s > 0 && ws.shape_has_J && same_bits(ws.shape_key, ws.q_s);
+  if (body.n_s > 0 && !reuse_shape && body.shape == ShapeKind::superquadric) {
+    compute_node_bases(body, ws.q_s, ws);
+  }
   // J-dot q_s-dot: exact for the superquadric; for the deformed shapes a second difference of s
   // along q_s-dot, h keeping h*q_s-dot ~ 1e-4 so the truncation (h^2) and rounding (eps/h^2)
   // errors both stay near 1e-8 relative.
@@ -155,7 +180,7 @@ void compute_body_kinematics(const BodyModel& body, const Eigen::Ref<const VecX>
       if (!reuse_shape) {
         if (body.shape == ShapeKind::superquadric) {
           SuperquadricJacobian J_e;
-          evaluate_superquadric(ws.q_s, angles, 1.0, ws.s[i], &J_e, &ws.basis[i]);
+          evaluate_superquadric(ws.q_s, ws.basis[i], 1.0, ws.s[i], &J_e);
           ws.Jt.middleCols(3 * i, 3) = J_e.transpose();
         } else {
           evaluate_reference_shape(body.shape, ws.q_s, angles, 1.0, ws.s[i], &ws.J_node);

@@ -82,9 +82,10 @@ struct BodyWorkspace {
   // J_i^T of (2.6) for every node, n_s x 3 n_nodes: node i's block is columns 3i..3i+2, one
   // contiguous n_s x 3 run (see add_Jt_y and J_times).
   MatX Jt;
-  Mat3X J_node;                          // 3 x n_shape scratch
-  std::vector<SuperquadricBasis> basis;  // superquadric bodies: per node, with s and J
-  VecX K_q;                              // K_dd q_d, body frame (3 n_nodes)
+  Mat3X J_node;                                  // 3 x n_shape scratch
+  std::vector<SuperquadricBasis> basis;          // superquadric bodies: per node, with s and J
+  std::vector<SignedPowers> u_powers, v_powers;  // per BodyModel::grid_u / grid_v entry
+  VecX K_q;                                      // K_dd q_d, body frame (3 n_nodes)
   MatX A;  // k x k mass block of the generalized rigid+global coordinates
   Eigen::SelfAdjointEigenSolver<MatX> A_eigen;  // A = V diag(lambda) V^T
   VecX A_inverse_eigenvalues;                   // 1 / lambda on A's range, 0 on its null space
@@ -106,6 +107,10 @@ struct BodyWorkspace {
 };
 
 void resize_workspace(const BodyModel& body, BodyWorkspace& ws);
+
+// Superquadric bodies: each node's basis at q_s from the powers of its latitude and longitude,
+// computed once per distinct value (SignedPowers), into ws.basis.
+void compute_node_bases(const BodyModel& body, const VecX& q_s, BodyWorkspace& ws);
 
 // out(0..n_s-1) += w J_i^T y, written out: n_s is small and known only at run time, where Eigen's
 // dynamic products cost more than the arithmetic.

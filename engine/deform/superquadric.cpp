@@ -48,6 +48,20 @@ SuperquadricAngles superquadric_angles(Real u, Real v) {
   return a;
 }
 
+SignedPowers latitude_powers(const SuperquadricAngles& a, Real eps1) {
+  SignedPowers p;
+  signed_power_pair(a.cos_u, a.ln_cos_u, eps1, p.C, p.lnC);
+  signed_power_pair(a.sin_u, a.ln_sin_u, eps1, p.S, p.lnS);
+  return p;
+}
+
+SignedPowers longitude_powers(const SuperquadricAngles& a, Real eps2) {
+  SignedPowers p;
+  signed_power_pair(a.cos_v, a.ln_cos_v, eps2, p.C, p.lnC);
+  signed_power_pair(a.sin_v, a.ln_sin_v, eps2, p.S, p.lnS);
+  return p;
+}
+
 SuperquadricBasis compute_superquadric_basis(const SuperquadricAngles& a, Real eps1, Real eps2) {
   SuperquadricBasis b;
   signed_power_pair(a.cos_u, a.ln_cos_u, eps1, b.C_u, b.lnC_u);
@@ -67,11 +81,14 @@ void evaluate_superquadric(const Eigen::Ref<const VecX>& q_s, Real u, Real v, Re
 }
 
 void evaluate_superquadric(const Eigen::Ref<const VecX>& q_s, const SuperquadricAngles& angles,
-                           Real w, Vec3& e, SuperquadricJacobian* J_e, SuperquadricBasis* basis) {
+                           Real w, Vec3& e, SuperquadricJacobian* J_e) {
+  evaluate_superquadric(q_s, compute_superquadric_basis(angles, q_s(4), q_s(5)), w, e, J_e);
+}
+
+void evaluate_superquadric(const Eigen::Ref<const VecX>& q_s, const SuperquadricBasis& b, Real w,
+                           Vec3& e, SuperquadricJacobian* J_e) {
   assert(q_s.size() >= 6);
   const Real a0 = q_s(0), a1 = q_s(1), a2 = q_s(2), a3 = q_s(3);
-  const SuperquadricBasis b = compute_superquadric_basis(angles, q_s(4), q_s(5));
-  if (basis != nullptr) *basis = b;
   // (2.7)
   e = a0 * w * Vec3(a1 * b.C_u * b.C_v, a2 * b.C_u * b.S_v, a3 * b.S_u);
   if (J_e == nullptr) return;

@@ -39,6 +39,18 @@ struct SuperquadricAngles {
 };
 SuperquadricAngles superquadric_angles(Real u, Real v);
 
+// The signed powers of one latitude (C_u, S_u with eps1) or one longitude (C_v, S_v with eps2)
+// and their eps-derivatives. A tessellation's grid has few distinct u and v, so bodies compute
+// these once per distinct value and assemble each node's basis from two of them.
+struct SignedPowers {
+  Real C = 0, S = 0, lnC = 0, lnS = 0;
+};
+SignedPowers latitude_powers(const SuperquadricAngles& angles, Real eps1);
+SignedPowers longitude_powers(const SuperquadricAngles& angles, Real eps2);
+inline SuperquadricBasis combine_powers(const SignedPowers& u, const SignedPowers& v) {
+  return {u.C, u.S, v.C, v.S, u.lnC, u.lnS, v.lnC, v.lnS};
+}
+
 // u in [-pi/2, pi/2] (latitude), v in [-pi, pi) (longitude); eps1, eps2 > 0.
 SuperquadricBasis compute_superquadric_basis(Real u, Real v, Real eps1, Real eps2);
 SuperquadricBasis compute_superquadric_basis(const SuperquadricAngles& angles, Real eps1,
@@ -49,8 +61,10 @@ SuperquadricBasis compute_superquadric_basis(const SuperquadricAngles& angles, R
 void evaluate_superquadric(const Eigen::Ref<const VecX>& q_s, Real u, Real v, Real w, Vec3& e,
                            SuperquadricJacobian* J_e);
 void evaluate_superquadric(const Eigen::Ref<const VecX>& q_s, const SuperquadricAngles& angles,
-                           Real w, Vec3& e, SuperquadricJacobian* J_e,
-                           SuperquadricBasis* basis = nullptr);
+                           Real w, Vec3& e, SuperquadricJacobian* J_e);
+// The same from the basis at q_s's eps1, eps2.
+void evaluate_superquadric(const Eigen::Ref<const VecX>& q_s, const SuperquadricBasis& basis,
+                           Real w, Vec3& e, SuperquadricJacobian* J_e);
 
 // sum_ij d2e/dq_i dq_j r_i r_j over q_s(0..5) for a direction r (6 entries): with r = q_s-dot it
 // is the J-dot q_s-dot that the velocity-product acceleration of (3.18) needs, exactly, where a

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <numbers>
 
 #include "core/error.h"
@@ -130,6 +131,18 @@ BodyModel build_body(const Scene& scene, int b) {
   // Reference shape at the initial parameters: the shape of a rigid body.
   body.s_fixed.resize(n);
   body.node_angles.resize(n);
+  {
+    std::map<Real, int> u_index, v_index;
+    body.node_grid.resize(n);
+    for (int i = 0; i < n; ++i) {
+      const Vec2& uv = body.tessellation.uv[i];
+      auto [u_it, u_new] = u_index.emplace(uv.x(), static_cast<int>(body.grid_u.size()));
+      if (u_new) body.grid_u.push_back(superquadric_angles(uv.x(), 0.0));
+      auto [v_it, v_new] = v_index.emplace(uv.y(), static_cast<int>(body.grid_v.size()));
+      if (v_new) body.grid_v.push_back(superquadric_angles(0.0, uv.y()));
+      body.node_grid[i] = {u_it->second, v_it->second};
+    }
+  }
   for (int i = 0; i < n; ++i) {
     const Vec2& uv = body.tessellation.uv[i];
     body.node_angles[i] = superquadric_angles(uv.x(), uv.y());

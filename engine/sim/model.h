@@ -51,8 +51,12 @@ struct BodyModel {
   std::vector<Vec3> s_fixed;     // rigid bodies: reference shape at each node (constant)
   Tessellation tessellation;
   std::vector<SuperquadricAngles> node_angles;  // superquadric_angles(u_i, v_i) per node
-  MembraneStiffness stiffness;                  // K_dd element matrices, local bodies only
-  std::vector<ContactSample> contact_samples;   // local bodies, 3 per surface triangle, in order
+  // The distinct latitudes and longitudes of the nodes (angles of (u, 0) and (0, v)) and, per
+  // node, its pair of indices into them: see SignedPowers.
+  std::vector<SuperquadricAngles> grid_u, grid_v;
+  std::vector<std::array<int, 2>> node_grid;
+  MembraneStiffness stiffness;                 // K_dd element matrices, local bodies only
+  std::vector<ContactSample> contact_samples;  // local bodies, 3 per surface triangle, in order
   Real contact_sample_gap = 0;  // bound on |exact - blended| sample position on the initial shape
   // Per surface triangle: how far its samples lie from its nodes on the initial shape, at most.
   std::vector<Real> contact_triangle_reach;

@@ -77,8 +77,10 @@ void evaluate_derivative(const Model& model, const Inputs& inputs, Workspace& ws
     compute_elastic_forces(body, qb, bw);
     accumulate_external_forces(model, inputs, t, b, ws);
     factor_generalized_mass(body, qb, bw);  // the contact forces need the body's mobility
-    ws.contacts += add_contact_forces(model, body, bw);
     ws.stage_seconds[static_cast<int>(StepStage::forces)] += seconds_since(t0);
+    t0 = Clock::now();
+    ws.contacts += add_contact_forces(model, body, bw);
+    ws.stage_seconds[static_cast<int>(StepStage::contact_forces)] += seconds_since(t0);
     t0 = Clock::now();
     auto out = v_dot.segment(body.v_offset, body.v_size);
     solve_body_dynamics(body, qb, vb, bw, out);
@@ -154,6 +156,8 @@ const char* stage_name(StepStage stage) {
   switch (stage) {
     case StepStage::forces:
       return "forces";
+    case StepStage::contact_forces:
+      return "contact_forces";
     case StepStage::dynamics:
       return "dynamics";
     case StepStage::integrate:

@@ -17,7 +17,9 @@
 
 namespace pbm {
 
-enum class StepStage { forces, dynamics, integrate, collisions, count };
+// Where a step's time goes: nodal forces (with kinematics, elastic forces and the mass block),
+// obstacle forces (5.11, 5.12), the solve of (3.13), the integrator, penetration resolution.
+enum class StepStage { forces, contact_forces, dynamics, integrate, collisions, count };
 const char* stage_name(StepStage stage);
 
 struct BodyFrameStats {
