@@ -145,11 +145,26 @@ Vec3 blended_point(const ContactSample& sample, const BodyWorkspace& ws) {
 // Signed distance of the sample's point on the global surface c + R s(u, v) (no dent) to the
 // deepest obstacle; s is evaluated exactly only near an obstacle. Sets s (body frame), o and n.
 Real sample_distance(const Model& model, const BodyModel& body, const ContactSample& sample,
-                     const BodyWorkspace& ws, const Vec3& c, Vec3& s, int& o, Vec3& n) {
+                     BodyWorkspace& ws, const Vec3& c, Vec3& s, int& o, Vec3& n) {
   s = blended_point(sample, ws);
   const Real screen = deepest(model, c + ws.R * s, o, n);
   if (screen > 4.0 * body.contact_sample_gap * ws.q_s[0] / body.q_s_fixed[0]) return screen;
-  evaluate_reference_shape(body.shape, ws.q_s, sample.angles, 1.0, s, nullptr);
+  if (body.shape == ShapeKind::superquadric) {
+    // The superquadric from its latitude's and longitude's powers, shared by many samples.
+    const auto [iu, iv] = sample.grid;
+    if (ws.sample_u_stamp[iu] != ws.sample_stamp) {
+      ws.sample_u_powers[iu] = latitude_powers(body.sample_grid_u[iu], ws.q_s[4]);
+      ws.sample_u_stamp[iu] = ws.sample_stamp;
+    }
+    if (ws.sample_v_stamp[iv] != ws.sample_stamp) {
+      ws.sample_v_powers[iv] = longitude_powers(body.sample_grid_v[iv], ws.q_s[5]);
+      ws.sample_v_stamp[iv] = ws.sample_stamp;
+    }
+    evaluate_superquadric(ws.q_s, combine_powers(ws.sample_u_powers[iu], ws.sample_v_powers[iv]),
+                          1.0, s, nullptr);
+  } else {
+    evaluate_reference_shape(body.shape, ws.q_s, sample.angles, 1.0, s, nullptr);
+  }
   return deepest(model, c + ws.R * s, o, n);
 }
 
@@ -165,6 +180,11 @@ void gather_pressing_samples(const Model& model, const BodyModel& body, BodyWork
                              const Vec3& c) {
   ws.pressing.clear();
   if (!body.has_local || model.obstacles.empty()) return;
+  if (++ws.sample_stamp == 0) {  // wrapped: no entry may look current
+    std::fill(ws.sample_u_stamp.begin(), ws.sample_u_stamp.end(), 0u);
+    std::fill(ws.sample_v_stamp.begin(), ws.sample_v_stamp.end(), 0u);
+    ws.sample_stamp = 1;
+  }
   bool all_planes = true;
   for (const ObstacleModel& o : model.obstacles) all_planes &= o.kind == ObstacleKind::plane;
   for (int i = 0; i < body.n_nodes(); ++i) {
@@ -355,6 +375,7 @@ ContactResolution resolve_penetrations(const Model& model, const BodyModel& body
           const Vec3 dx = (kProjectionMargin - phi) * n;  // step 1: project along n
           q.segment<3>(d_q + 3 * i) += Rt * dx;           // step 2: the new d
           ws.x[i] += dx;
+          ws.p[i] += Rt * dx;
           // An inelastic node impact, with Coulomb's law on the impulse (5.12): the slip
           // changes by at most beta_f times the normal velocity change. Both only remove energy.
           const Real vn = ws.x_dot[i].dot(n);
@@ -367,11 +388,14 @@ ContactResolution resolve_penetrations(const Model& model, const BodyModel& body
             }
             v.segment<3>(d_v + 3 * i) += Rt * dv;
             ws.x_dot[i] += dv;
+            ws.d_dot_body[i] += Rt * dv;
+            ws.p_dot[i] += Rt * dv;
           }
         }
       }
-      recenter_displacements(body, q);
-      compute_body_kinematics(body, q, v, ws, false);  // the shape is reused: cheap
+      // No node moves or changes velocity: only p, measured from the moved origin.
+      const Vec3 shift = recenter_displacements(body, q, v);
+      for (Vec3& p : ws.p) p -= shift;
     }
     // With or without contact the mean-axis split is restored: its velocity form drifts between
     // steps. The factorization at the final q is the one the next step starts with.

@@ -72,6 +72,11 @@ void resize_workspace(const BodyModel& body, BodyWorkspace& ws) {
   ws.basis.assign(body.shape == ShapeKind::superquadric ? n : 0, SuperquadricBasis{});
   ws.u_powers.assign(body.grid_u.size(), SignedPowers{});
   ws.v_powers.assign(body.grid_v.size(), SignedPowers{});
+  ws.sample_u_powers.assign(body.sample_grid_u.size(), SignedPowers{});
+  ws.sample_v_powers.assign(body.sample_grid_v.size(), SignedPowers{});
+  ws.sample_u_stamp.assign(body.sample_grid_u.size(), 0);
+  ws.sample_v_stamp.assign(body.sample_grid_v.size(), 0);
+  ws.sample_stamp = 0;
   ws.contact_generalized.setZero(k);
   ws.surface_distance.assign(n, 0.0);
   ws.pressing.clear();
@@ -92,6 +97,7 @@ void resize_workspace(const BodyModel& body, BodyWorkspace& ws) {
   ws.mass_J.setZero(3, body.n_s);
   ws.mass_pJ.setZero(3, body.n_s);
   ws.mass_JtJ.setZero(body.n_s, body.n_s);
+  ws.mass_Jt.setZero(body.n_s, 3 * n);
   ws.node_mass_3.resize(3 * n);
   for (int i = 0; i < n; ++i) ws.node_mass_3.segment<3>(3 * i).setConstant(body.node_mass[i]);
   ws.kinematics_valid = false;
@@ -237,32 +243,37 @@ void factor_generalized_mass(const BodyModel& body, const Eigen::Ref<const VecX>
   ws.mass_key = q;
   const int n = body.n_nodes();
   const int ns = body.n_s;
-  // Blocks of (3.16) in the body frame: the 3x3 and 3 x n_s ones node by node (no temporaries),
-  // M_ss = J^T diag(m) J as one matrix product.
+  // Blocks of (3.16) in the body frame: the 3 x 3 ones node by node, the ones with J as products
+  // over all nodes of the mass-weighted Jt (vectorized, where per-node loops over a run-time n_s
+  // are not).
   Real m = 0;
   Vec3 mp = Vec3::Zero();
   Mat3 inertia = Mat3::Zero();
-  MatX& mJ = ws.mass_J;
-  MatX& mpJ = ws.mass_pJ;
-  mJ.setZero();
-  mpJ.setZero();
   for (int i = 0; i < n; ++i) {
     const Real mi = body.node_mass[i];
     const Vec3& p = ws.p[i];
     m += mi;
     mp += mi * p;
     inertia += mi * (p.squaredNorm() * Mat3::Identity() - p * p.transpose());
-    if (ns > 0) {
-      const Real* b = ws.Jt.data() + 3 * i * ns;  // J_i^T, n_s x 3
-      for (int k = 0; k < ns; ++k) {
-        const Vec3 Jik(b[k], b[ns + k], b[2 * ns + k]);  // column k of J_i
-        mJ.col(k) += mi * Jik;
-        mpJ.col(k) += mi * p.cross(Jik);
-      }
-    }
   }
+  MatX& mJ = ws.mass_J;
+  MatX& mpJ = ws.mass_pJ;
   MatX& JtJ = ws.mass_JtJ;
-  if (ns > 0) JtJ.noalias() = ws.Jt * ws.node_mass_3.asDiagonal() * ws.Jt.transpose();
+  if (ns > 0) {
+    using Strided = Eigen::Map<const MatX, 0, Eigen::OuterStride<>>;
+    using Coordinates = Eigen::Map<const VecX, 0, Eigen::InnerStride<3>>;
+    ws.mass_Jt.noalias() = ws.Jt * ws.node_mass_3.asDiagonal();
+    // Columns of mass_Jt for coordinate r of every node: n_s x n.
+    auto component = [&](int r) { return Strided(ws.mass_Jt.data() + r * ns, ns, n, {3 * ns}); };
+    auto coordinate = [&](int r) { return Coordinates(ws.p[0].data() + r, n); };
+    for (int r = 0; r < 3; ++r) mJ.row(r) = component(r).rowwise().sum().transpose();  // M_cs
+    // M_theta s = sum m p~ J: row r of p x (m J_k) is p_{r+1} mJ_{r+2} - p_{r+2} mJ_{r+1}.
+    for (int r = 0; r < 3; ++r) {
+      const int a = (r + 1) % 3, b = (r + 2) % 3;
+      mpJ.row(r) = (component(b) * coordinate(a) - component(a) * coordinate(b)).transpose();
+    }
+    JtJ.noalias() = ws.mass_Jt * ws.Jt.transpose();  // M_ss = sum m J^T J
+  }
   MatX& A = ws.A;
   A.setZero();
   A.block<3, 3>(0, 0) = m * Mat3::Identity();  // M_cc
@@ -377,8 +388,8 @@ void resplit_velocities(const BodyModel& body, const Eigen::Ref<const VecX>& q, 
   for (int i = 0; i < n; ++i) v.segment<3>(sl.d_v + 3 * i) -= apply_P(body, ws, i, ws.gamma);
 }
 
-void recenter_displacements(const BodyModel& body, Eigen::Ref<VecX> q) {
-  if (!body.has_local) return;
+Vec3 recenter_displacements(const BodyModel& body, Eigen::Ref<VecX> q, Eigen::Ref<VecX> v) {
+  if (!body.has_local) return Vec3::Zero();
   const int n = body.n_nodes();
   const int d_q = 7 + body.n_s;
   Vec3 mean = Vec3::Zero();
@@ -387,6 +398,8 @@ void recenter_displacements(const BodyModel& body, Eigen::Ref<VecX> q) {
   const Mat3 R = rotation_from_quaternion(q.segment<4>(3));
   q.segment<3>(0) += R * mean;
   for (int i = 0; i < n; ++i) q.segment<3>(d_q + 3 * i) -= mean;
+  v.segment<3>(0) += R * Vec3(v.segment<3>(3)).cross(mean);
+  return mean;
 }
 
 BodyEnergy compute_body_energy(const BodyModel& body, const Eigen::Ref<const VecX>& q,

@@ -85,8 +85,13 @@ struct BodyWorkspace {
   Mat3X J_node;                                  // 3 x n_shape scratch
   std::vector<SuperquadricBasis> basis;          // superquadric bodies: per node, with s and J
   std::vector<SignedPowers> u_powers, v_powers;  // per BodyModel::grid_u / grid_v entry
-  VecX K_q;                                      // K_dd q_d, body frame (3 n_nodes)
-  MatX A;  // k x k mass block of the generalized rigid+global coordinates
+  // The same for the contact samples' grid, filled on demand: an entry is current when its stamp
+  // equals sample_stamp (advanced whenever q_s may have changed).
+  std::vector<SignedPowers> sample_u_powers, sample_v_powers;
+  std::vector<unsigned> sample_u_stamp, sample_v_stamp;
+  unsigned sample_stamp = 0;
+  VecX K_q;  // K_dd q_d, body frame (3 n_nodes)
+  MatX A;    // k x k mass block of the generalized rigid+global coordinates
   Eigen::SelfAdjointEigenSolver<MatX> A_eigen;  // A = V diag(lambda) V^T
   VecX A_inverse_eigenvalues;                   // 1 / lambda on A's range, 0 on its null space
   VecX A_tmp;                                   // k scratch
@@ -94,6 +99,7 @@ struct BodyWorkspace {
   MatX mass_J, mass_pJ;                         // sum m J_i, sum m p~_i J_i (3 x n_s)
   MatX mass_JtJ;                                // sum m J_i^T J_i (n_s x n_s)
   VecX node_mass_3;                             // node masses repeated per coordinate (3 n_nodes)
+  MatX mass_Jt;                                 // Jt diag(node_mass_3), n_s x 3 n_nodes
   bool kinematics_valid = false;
   // s and J depend on q_s alone: they are reused while q_s is bitwise unchanged (the contact
   // pass and the next step's first evaluation see the q_s the integrator produced).
@@ -176,7 +182,9 @@ void resplit_velocities(const BodyModel& body, const Eigen::Ref<const VecX>& q, 
 // The position counterpart of resplit_velocities for translation: moves the mass-weighted mean
 // of d into c (x_i unchanged exactly). The velocity condition alone is not integrable, so without
 // this, projections at contacts accumulate a translation in q_d and c leaves the body.
-void recenter_displacements(const BodyModel& body, Eigen::Ref<VecX> q);
+// c-dot gains omega x (the shift), in the world frame, so no node's velocity changes either: the
+// frame origin moved to another material point. Returns the shift (body frame).
+Vec3 recenter_displacements(const BodyModel& body, Eigen::Ref<VecX> q, Eigen::Ref<VecX> v);
 
 // P_i g = g_c + g_omega x p_i + J_i g_s: body-frame velocity of node i for a k-vector g.
 Vec3 node_from_generalized(const BodyModel& body, const BodyWorkspace& ws, int i, const VecX& g);

@@ -47,6 +47,9 @@ void build_contact_samples(BodyModel& body) {
   body.contact_samples.clear();
   body.contact_samples.reserve(kContactSamplesPerTriangle * t.triangles.size());
   body.contact_triangle_reach.clear();
+  body.sample_grid_u.clear();
+  body.sample_grid_v.clear();
+  std::map<Real, int> u_index, v_index;  // the samples' distinct latitudes and longitudes
   Real total_area = 0, gap = 0;
   for (const std::array<int, 3>& tri : t.triangles) {
     const Vec3& p0 = body.s_fixed[tri[0]];
@@ -82,6 +85,11 @@ void build_contact_samples(BodyModel& body) {
       }
       v = std::remainder(v / v_weight, 2 * std::numbers::pi);
       sample.angles = superquadric_angles(u, v);
+      auto [u_it, u_new] = u_index.emplace(u, static_cast<int>(body.sample_grid_u.size()));
+      if (u_new) body.sample_grid_u.push_back(superquadric_angles(u, 0.0));
+      auto [v_it, v_new] = v_index.emplace(v, static_cast<int>(body.sample_grid_v.size()));
+      if (v_new) body.sample_grid_v.push_back(superquadric_angles(0.0, v));
+      sample.grid = {u_it->second, v_it->second};
       Vec3 exact;
       evaluate_reference_shape(body.shape, body.q_s_fixed, sample.angles, 1.0, exact, nullptr);
       gap = std::max(gap, (exact - blended).norm());

@@ -32,6 +32,7 @@ struct ContactSample {
   std::array<int, 3> nodes{};
   Vec3 weights = Vec3::Zero();
   SuperquadricAngles angles;
+  std::array<int, 2> grid{};  // its latitude and longitude in BodyModel::sample_grid_u / _v
   Real stiffness = 0;
 };
 
@@ -60,6 +61,7 @@ struct BodyModel {
   Real contact_sample_gap = 0;  // bound on |exact - blended| sample position on the initial shape
   // Per surface triangle: how far its samples lie from its nodes on the initial shape, at most.
   std::vector<Real> contact_triangle_reach;
+  std::vector<SuperquadricAngles> sample_grid_u, sample_grid_v;  // distinct sample u and v
   Real w0 = 0, w1 = 0;
   VecX node_mass;    // lumped mass per node [kg] (sec. 6.1, footnote 2)
   Real mass = 0;     // sum of node_mass
