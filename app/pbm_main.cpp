@@ -1,8 +1,9 @@
-// pbm: the command line (validate, simulate, bench). A thin main over engine/ (DESIGN §2).
+// pbm: the command line (validate, simulate, render, bench). A thin main over engine/ (DESIGN §2).
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
 #include "bench_command.h"
+#include "render_command.h"
 #include "simulate_command.h"
 
 int main(int argc, char** argv) {
@@ -26,6 +27,17 @@ int main(int argc, char** argv) {
   simulate->add_option("--mesh-dir", sim.mesh_dir, "write each frame's surfaces here");
   simulate->add_option("--mesh-format", sim.mesh_format, "obj | gltf | ply");
 
+  pbm::RenderCommandOptions render;
+  auto* render_cmd = app.add_subcommand("render", "simulate a scene and write PNG frames");
+  render_cmd->add_option("scene", render.scene, "scene JSON file")->required();
+  render_cmd->add_option("--frames", render.frames, "A:B, inclusive (default: every frame)");
+  render_cmd->add_option("--seconds", render.seconds, "render frames 0 .. T * fps");
+  render_cmd->add_option("--size", render.size, "WxH in pixels (default 1280x720)");
+  render_cmd->add_option("--out", render.out, "folder for frame_NNNN.png (default out)");
+  render_cmd->add_option("--video", render.video, "also encode this video with ffmpeg");
+  render_cmd->add_option("--samples", render.samples, "MSAA samples, 1-16 (default 4)");
+  render_cmd->add_flag("--wireframe", render.wireframe, "overlay the finite-element mesh");
+
   pbm::BenchOptions bench;
   auto* bench_cmd = app.add_subcommand("bench", "benchmarks: deform (ours vs Bullet btSoftBody)");
   bench_cmd->add_option("what", bench.what, "deform")->required();
@@ -41,6 +53,7 @@ int main(int argc, char** argv) {
   spdlog::set_pattern("%^%l%$: %v");
   if (*validate) return pbm::run_validate(validate_scene);
   if (*simulate) return pbm::run_simulate(sim);
+  if (*render_cmd) return pbm::run_render(render);
   if (*bench_cmd) return pbm::run_bench(bench);
   return 2;
 }

@@ -9,3 +9,8 @@ if(PBM_BUILD_TESTS)
 endif()
 # Bullet is the side-by-side peer of `pbm bench deform`.
 find_package(Bullet REQUIRED)
+# The renderer's headless context and the PNG frames. Never OpenGL::GL (PLATFORM.md): OSMesa's
+# gl* must not be shadowed by libGL's.
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(OSMESA REQUIRED IMPORTED_TARGET osmesa)
+pkg_check_modules(PNG REQUIRED IMPORTED_TARGET libpng)

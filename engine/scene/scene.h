@@ -40,6 +40,7 @@ struct MaterialDef {
   Real mass = 0;              // total mass [kg], spread by lumping (sec. 6.1)
   Real damping = 1.4;         // nu in D = nu M (sec. 6.1) [1/s], >= 0
   Vec3 color{0.8, 0.3, 0.3};  // base colour for the renderer, components in [0, 1]
+  Real roughness = 0.5;       // renderer: 0 = mirror-like highlight, 1 = matte
 };
 
 struct BodyDef {
@@ -115,6 +116,15 @@ struct SolverDef {
   Real energy_growth_bound = 10.0;      // max (E_after / E_before) for one frame
 };
 
+// Where the renderer looks from (position, target, up) and its vertical field of view. Scenes
+// without one are framed automatically.
+struct CameraDef {
+  Vec3 position{6, -8, 4};
+  Vec3 target = Vec3::Zero();
+  Vec3 up{0, 0, 1};
+  Real fov = 40;  // vertical field of view [degrees], in (0, 180)
+};
+
 struct Scene {
   std::string file;  // where it was loaded from (for messages)
   std::string name;
@@ -125,6 +135,7 @@ struct Scene {
   std::vector<ForceFieldDef> force_fields;
   std::vector<SpringDef> springs;
   std::vector<TrackDef> tracks;
+  std::optional<CameraDef> camera;
 };
 
 }  // namespace pbm

@@ -158,7 +158,7 @@ TessellationDef parse_tessellation(const JsonNode& node) {
 MaterialDef parse_material(const JsonNode& body_node) {
   MaterialDef material;
   const JsonNode node = require_child(body_node, "material");
-  require_object(node, {"w0", "w1", "nodal_mass", "mass", "damping", "color"});
+  require_object(node, {"w0", "w1", "nodal_mass", "mass", "damping", "color", "roughness"});
   if (auto w0 = find_child(node, "w0")) material.w0 = require_non_negative(*w0, read_real(*w0));
   if (auto w1 = find_child(node, "w1")) material.w1 = require_non_negative(*w1, read_real(*w1));
   const std::optional<JsonNode> nodal_mass = find_child(node, "nodal_mass");
@@ -174,6 +174,10 @@ MaterialDef parse_material(const JsonNode& body_node) {
   if (auto color = find_child(node, "color")) {
     material.color = read_vec3(*color);
     for (int k = 0; k < 3; ++k) require_in_range(element(*color, k), material.color[k], 0, 1);
+  }
+  if (auto roughness = find_child(node, "roughness")) {
+    material.roughness = read_real(*roughness);
+    require_in_range(*roughness, material.roughness, 0, 1);
   }
   return material;
 }
@@ -492,16 +496,36 @@ std::vector<Def> parse_list(const JsonNode& root, std::string_view key, Parse pa
 
 }  // namespace
 
+CameraDef parse_camera(const JsonNode& node) {
+  require_object(node, {"position", "target", "up", "fov"});
+  CameraDef camera;
+  if (auto position = find_child(node, "position")) camera.position = read_vec3(*position);
+  if (auto target = find_child(node, "target")) camera.target = read_vec3(*target);
+  if (auto up = find_child(node, "up")) camera.up = normalized_direction(*up, read_vec3(*up), "up");
+  if (auto fov = find_child(node, "fov")) {
+    camera.fov = read_real(*fov);
+    if (!(camera.fov > 0 && camera.fov < 180)) fail(*fov, "must be in (0, 180) degrees");
+  }
+  if ((camera.target - camera.position).norm() < 1e-9) {
+    fail(node, "position and target must differ");
+  }
+  if ((camera.target - camera.position).normalized().cross(camera.up).norm() < 1e-6) {
+    fail(node, "up must not be parallel to the viewing direction");
+  }
+  return camera;
+}
+
 Scene parse_scene(const std::string& json_text, const std::string& file_for_messages) {
   const nlohmann::json document = parse_json_text(json_text, file_for_messages);
   const JsonNode root = root_node(document, file_for_messages);
   require_object(root, {"name", "gravity", "solver", "bodies", "obstacles", "force_fields",
-                        "springs", "tracks"});
+                        "springs", "tracks", "camera"});
   Scene scene;
   scene.file = file_for_messages;
   if (auto name = find_child(root, "name")) scene.name = read_string(*name);
   if (auto gravity = find_child(root, "gravity")) scene.gravity = read_vec3(*gravity);
   if (auto solver = find_child(root, "solver")) scene.solver = parse_solver(*solver);
+  if (auto camera = find_child(root, "camera")) scene.camera = parse_camera(*camera);
 
   // Bodies first: every other list refers to them.
   const JsonNode bodies = require_child(root, "bodies");

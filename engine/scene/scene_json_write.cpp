@@ -57,6 +57,7 @@ Json write_body(const BodyDef& body) {
   }
   material["damping"] = body.material.damping;
   material["color"] = to_array(body.material.color);
+  material["roughness"] = body.material.roughness;
 
   Json j;
   j["name"] = body.name;
@@ -130,6 +131,12 @@ std::string scene_to_json(const Scene& scene) {
   j["name"] = scene.name;
   j["gravity"] = to_array(scene.gravity);
   j["solver"] = write_solver(scene.solver);
+  if (scene.camera) {
+    j["camera"] = {{"position", to_array(scene.camera->position)},
+                   {"target", to_array(scene.camera->target)},
+                   {"up", to_array(scene.camera->up)},
+                   {"fov", scene.camera->fov}};
+  }
   j["bodies"] = Json::array();
   for (const BodyDef& body : scene.bodies) j["bodies"].push_back(write_body(body));
   j["obstacles"] = Json::array();

@@ -1,0 +1,90 @@
+#include "sim/snapshot.h"
+
+#include <algorithm>
+
+#include "deform/body_dynamics.h"
+#include "sim/tracks.h"
+
+namespace pbm {
+namespace {
+
+std::vector<std::array<int, 2>> element_edges(const Tessellation& t) {
+  std::vector<std::array<int, 2>> edges;
+  for (const Element& e : t.elements) {
+    const int count = element_node_count(e.kind);
+    for (int k = 0; k < count; ++k) {
+      int a = e.nodes[k], b = e.nodes[(k + 1) % count];
+      if (a > b) std::swap(a, b);
+      edges.push_back({a, b});
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  return edges;
+}
+
+}  // namespace
+
+Vec3f Snapshot::bodies_min() const {
+  Vec3f lo = Vec3f::Constant(1e30f);
+  for (const BodySnapshot& b : bodies) {
+    for (const Vec3f& x : b.positions) lo = lo.cwiseMin(x);
+  }
+  return lo;
+}
+
+Vec3f Snapshot::bodies_max() const {
+  Vec3f hi = Vec3f::Constant(-1e30f);
+  for (const BodySnapshot& b : bodies) {
+    for (const Vec3f& x : b.positions) hi = hi.cwiseMax(x);
+  }
+  return hi;
+}
+
+Snapshot make_snapshot(const Model& model, const State& state, const Inputs& inputs,
+                       Workspace& ws) {
+  Snapshot snap;
+  snap.time = state.time;
+  evaluate_drive(model, state.time, ws.drive);
+  snap.bodies.resize(model.bodies.size());
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    const BodyModel& body = model.bodies[b];
+    BodyWorkspace& bw = ws.bodies[b];
+    bw.q_s_rest = ws.drive.q_s0[b];
+    compute_body_kinematics(body, state.q.segment(body.q_offset, body.q_size),
+                            state.v.segment(body.v_offset, body.v_size), bw, false);
+    BodySnapshot& out = snap.bodies[b];
+    out.name = body.name;
+    out.positions.resize(bw.x.size());
+    for (std::size_t i = 0; i < bw.x.size(); ++i) out.positions[i] = bw.x[i].cast<float>();
+    out.triangles = body.tessellation.triangles;
+    out.edges = element_edges(body.tessellation);
+    out.color = body.color.cast<float>();
+    out.roughness = static_cast<float>(model.scene.bodies[b].material.roughness);
+  }
+  for (const ObstacleModel& o : model.obstacles) {
+    ObstacleSnapshot out;
+    out.kind = o.kind;
+    out.point = o.point.cast<float>();
+    out.normal = o.normal.cast<float>();
+    out.size = o.size.cast<float>();
+    out.rotation = o.rotation.cast<float>();
+    out.half_extents = o.half_extents.cast<float>();
+    snap.obstacles.push_back(out);
+  }
+  for (std::size_t s = 0; s < model.springs.size(); ++s) {
+    const SpringModel& spring = model.springs[s];
+    if (state.time < spring.t_begin || state.time > spring.t_end) continue;
+    snap.springs.push_back({ws.bodies[spring.body].x[spring.node].cast<float>(),
+                            ws.drive.spring_target[s].cast<float>()});
+  }
+  for (const MouseSpring& spring : inputs.springs) {
+    if (spring.body < 0 || spring.body >= static_cast<int>(model.bodies.size())) continue;
+    const auto& x = ws.bodies[spring.body].x;
+    if (spring.node < 0 || spring.node >= static_cast<int>(x.size())) continue;
+    snap.springs.push_back({x[spring.node].cast<float>(), spring.target.cast<float>()});
+  }
+  return snap;
+}
+
+}  // namespace pbm

@@ -1,0 +1,62 @@
+#version 330 core
+// Key light with a shadow map, a cool fill light and sky ambient, Blinn-Phong with the
+// material's roughness setting the highlight, Reinhard tone mapping and sRGB gamma. Planes
+// (u_grid = 1) draw a 1 m grid in their own axes.
+in vec3 v_position;
+in vec3 v_normal;
+in vec4 v_light_clip;
+uniform vec3 u_camera;
+uniform vec3 u_base_color;
+uniform float u_roughness;
+uniform vec3 u_key_direction;   // towards the key light
+uniform vec3 u_fill_direction;  // towards the fill light
+uniform sampler2D u_shadow_map;
+uniform int u_shadows;
+uniform int u_grid;
+uniform vec3 u_grid_origin;
+uniform vec3 u_grid_u;
+uniform vec3 u_grid_v;
+out vec4 frag_color;
+
+float key_visibility(vec3 n) {
+  if (u_shadows == 0) return 1.0;
+  vec3 p = v_light_clip.xyz / v_light_clip.w * 0.5 + 0.5;
+  if (p.x <= 0.0 || p.x >= 1.0 || p.y <= 0.0 || p.y >= 1.0 || p.z >= 1.0) return 1.0;
+  float bias = 0.0015 + 0.004 * (1.0 - abs(dot(n, u_key_direction)));
+  vec2 texel = 1.0 / vec2(textureSize(u_shadow_map, 0));
+  float lit = 0.0;
+  for (int dx = -1; dx <= 1; ++dx) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      float depth = texture(u_shadow_map, p.xy + vec2(dx, dy) * texel).r;
+      lit += p.z - bias <= depth ? 1.0 : 0.0;
+    }
+  }
+  return lit / 9.0;
+}
+
+void main() {
+  vec3 n = normalize(v_normal);
+  vec3 to_camera = normalize(u_camera - v_position);
+  if (dot(n, to_camera) < 0.0) n = -n;
+  vec3 albedo = u_base_color;
+  if (u_grid == 1) {
+    vec3 d = v_position - u_grid_origin;
+    vec2 c = vec2(dot(d, u_grid_u), dot(d, u_grid_v));
+    vec2 w = fwidth(c);
+    vec2 line = abs(fract(c - 0.5) - 0.5) / max(w, vec2(1e-6));
+    float on_line = 1.0 - clamp(min(line.x, line.y), 0.0, 1.0);
+    albedo = mix(albedo, albedo * 0.55, on_line);
+  }
+  float shininess = mix(256.0, 4.0, clamp(u_roughness, 0.0, 1.0));
+  float specular_strength = mix(0.6, 0.05, clamp(u_roughness, 0.0, 1.0));
+  float key = max(dot(n, u_key_direction), 0.0) * key_visibility(n);
+  vec3 half_key = normalize(u_key_direction + to_camera);
+  float highlight = key > 0.0 ? pow(max(dot(n, half_key), 0.0), shininess) : 0.0;
+  float fill = max(dot(n, u_fill_direction), 0.0);
+  float sky = 0.5 + 0.5 * n.z;
+  vec3 color = albedo * (vec3(1.0, 0.96, 0.9) * 2.2 * key + vec3(0.55, 0.65, 0.8) * 0.45 * fill +
+                         mix(vec3(0.10, 0.09, 0.08), vec3(0.22, 0.25, 0.30), sky)) +
+               vec3(1.0, 0.96, 0.9) * specular_strength * highlight * 2.0;
+  color = color / (1.0 + color);          // Reinhard
+  frag_color = vec4(pow(color, vec3(1.0 / 2.2)), 1.0);
+}

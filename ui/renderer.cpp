@@ -1,0 +1,529 @@
+#include "renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "embedded_shaders.h"
+
+namespace pbm {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Vec3f = Eigen::Vector3f;
+using Mat4f = Eigen::Matrix4f;
+
+constexpr int kShadowSize = 2048;
+const Vec3f kKeyDirection = Vec3f(0.45f, -0.35f, 0.82f).normalized();  // towards the key light
+const Vec3f kFillDirection = Vec3f(-0.7f, 0.4f, 0.3f).normalized();
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+GLuint compile(const gl::Functions& gl, GLenum type, const char* source, const char* name) {
+  const GLuint shader = gl.CreateShader(type);
+  gl.ShaderSource(shader, 1, &source, nullptr);
+  gl.CompileShader(shader);
+  GLint ok = 0;
+  gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    gl.GetShaderInfoLog(shader, sizeof(log), nullptr, log);
+    gl.DeleteShader(shader);
+    throw std::runtime_error(std::string("shader ") + name + " does not compile: " + log);
+  }
+  return shader;
+}
+
+GLuint link(const gl::Functions& gl, const char* name) {
+  const GLuint vs = compile(gl, GL_VERTEX_SHADER, shader_source(std::string(name) + ".vert"), name);
+  const GLuint fs =
+      compile(gl, GL_FRAGMENT_SHADER, shader_source(std::string(name) + ".frag"), name);
+  const GLuint program = gl.CreateProgram();
+  gl.AttachShader(program, vs);
+  gl.AttachShader(program, fs);
+  gl.LinkProgram(program);
+  gl.DeleteShader(vs);
+  gl.DeleteShader(fs);
+  GLint ok = 0;
+  gl.GetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    gl.GetProgramInfoLog(program, sizeof(log), nullptr, log);
+    gl.DeleteProgram(program);
+    throw std::runtime_error(std::string("shader program ") + name + " does not link: " + log);
+  }
+  return program;
+}
+
+// One vertex array with an interleaved (position, normal) buffer and two index buffers.
+struct Mesh {
+  GLuint vao = 0, vbo = 0, triangles = 0, edges = 0;
+  GLsizei triangle_count = 0, edge_count = 0;
+  std::size_t vertex_capacity = 0;
+};
+
+// A unit vector perpendicular to n, chosen the same way every time.
+Vec3f perpendicular(const Vec3f& n) {
+  const Vec3f axis = std::abs(n.y()) < 0.9f ? Vec3f::UnitY() : Vec3f::UnitX();
+  return n.cross(axis).normalized();
+}
+
+}  // namespace
+
+struct Renderer::Impl {
+  const gl::Functions& gl;
+  GLuint background = 0, shadow = 0, surface = 0, line = 0;
+  GLuint empty_vao = 0;
+  std::vector<Mesh> bodies;
+  Mesh scratch;  // obstacles and springs, rebuilt each frame
+  GLuint shadow_fbo = 0, shadow_texture = 0;
+  GLuint msaa_fbo = 0, msaa_color = 0, msaa_depth = 0;
+  GLuint resolve_fbo = 0, resolve_color = 0, resolve_depth = 0;
+  int width = 0, height = 0, samples_in_use = 0;
+  RenderTimes times;
+  std::vector<float> vertices;  // scratch for uploads
+
+  explicit Impl(const gl::Functions& functions) : gl(functions) {}
+
+  GLint uniform(GLuint program, const char* name) const {
+    return gl.GetUniformLocation(program, name);
+  }
+  void set(GLuint p, const char* name, const Mat4f& m) const {
+    gl.UniformMatrix4fv(uniform(p, name), 1, GL_FALSE, m.data());
+  }
+  void set(GLuint p, const char* name, const Vec3f& v) const {
+    gl.Uniform3f(uniform(p, name), v.x(), v.y(), v.z());
+  }
+  void set(GLuint p, const char* name, float x) const { gl.Uniform1f(uniform(p, name), x); }
+  void set(GLuint p, const char* name, int x) const { gl.Uniform1i(uniform(p, name), x); }
+
+  void create_mesh(Mesh& m) {
+    gl.GenVertexArrays(1, &m.vao);
+    gl.GenBuffers(1, &m.vbo);
+    gl.GenBuffers(1, &m.triangles);
+    gl.GenBuffers(1, &m.edges);
+    gl.BindVertexArray(m.vao);
+    gl.BindBuffer(GL_ARRAY_BUFFER, m.vbo);
+    gl.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
+    gl.EnableVertexAttribArray(0);
+    gl.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float),
+                           reinterpret_cast<void*>(3 * sizeof(float)));
+    gl.EnableVertexAttribArray(1);
+    gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.triangles);
+    gl.BindVertexArray(0);
+  }
+  void delete_mesh(Mesh& m) {
+    gl.DeleteBuffers(1, &m.vbo);
+    gl.DeleteBuffers(1, &m.triangles);
+    gl.DeleteBuffers(1, &m.edges);
+    gl.DeleteVertexArrays(1, &m.vao);
+    m = Mesh{};
+  }
+  // Positions and normals (6 floats a vertex) into m's vertex buffer.
+  void upload_vertices(Mesh& m, const std::vector<float>& data) {
+    gl.BindBuffer(GL_ARRAY_BUFFER, m.vbo);
+    const std::size_t bytes = data.size() * sizeof(float);
+    if (bytes > m.vertex_capacity) {
+      gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(bytes), data.data(), GL_STREAM_DRAW);
+      m.vertex_capacity = bytes;
+    } else {
+      gl.BufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(bytes), data.data());
+    }
+  }
+
+  void ensure_targets(const RenderOptions& o) {
+    GLint max_samples = 1;
+    gl.GetIntegerv(GL_MAX_SAMPLES, &max_samples);
+    const int samples = std::clamp(o.samples, 1, std::max(1, static_cast<int>(max_samples)));
+    if (o.width == width && o.height == height && samples == samples_in_use) return;
+    release_targets();
+    width = o.width;
+    height = o.height;
+    samples_in_use = samples;
+    gl.GenFramebuffers(1, &resolve_fbo);
+    gl.GenRenderbuffers(1, &resolve_color);
+    gl.GenRenderbuffers(1, &resolve_depth);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, resolve_fbo);
+    gl.BindRenderbuffer(GL_RENDERBUFFER, resolve_color);
+    gl.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                               resolve_color);
+    gl.BindRenderbuffer(GL_RENDERBUFFER, resolve_depth);
+    gl.RenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, resolve_depth);
+    check_framebuffer("image");
+    if (samples > 1) {
+      gl.GenFramebuffers(1, &msaa_fbo);
+      gl.GenRenderbuffers(1, &msaa_color);
+      gl.GenRenderbuffers(1, &msaa_depth);
+      gl.BindFramebuffer(GL_FRAMEBUFFER, msaa_fbo);
+      gl.BindRenderbuffer(GL_RENDERBUFFER, msaa_color);
+      gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, width, height);
+      gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, msaa_color);
+      gl.BindRenderbuffer(GL_RENDERBUFFER, msaa_depth);
+      gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH_COMPONENT24, width,
+                                        height);
+      gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, msaa_depth);
+      check_framebuffer("multisampled image");
+    }
+  }
+  void release_targets() {
+    for (GLuint* fbo : {&msaa_fbo, &resolve_fbo}) {
+      if (*fbo) gl.DeleteFramebuffers(1, fbo);
+      *fbo = 0;
+    }
+    for (GLuint* rb : {&msaa_color, &msaa_depth, &resolve_color, &resolve_depth}) {
+      if (*rb) gl.DeleteRenderbuffers(1, rb);
+      *rb = 0;
+    }
+  }
+  void check_framebuffer(const char* what) const {
+    if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+      throw std::runtime_error(std::string("the ") + what + " framebuffer is incomplete (size " +
+                               std::to_string(width) + "x" + std::to_string(height) + ")");
+    }
+  }
+  GLuint draw_target() const { return samples_in_use > 1 ? msaa_fbo : resolve_fbo; }
+  void resolve() const {
+    if (samples_in_use <= 1) return;
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, msaa_fbo);
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, resolve_fbo);
+    gl.BlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  }
+
+  // Smooth normals (area-weighted face normals) and positions of every body into its mesh.
+  void upload_bodies(const Snapshot& s) {
+    while (bodies.size() > s.bodies.size()) {
+      delete_mesh(bodies.back());
+      bodies.pop_back();
+    }
+    while (bodies.size() < s.bodies.size()) {
+      bodies.emplace_back();
+      create_mesh(bodies.back());
+    }
+    for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+      const BodySnapshot& body = s.bodies[b];
+      Mesh& m = bodies[b];
+      const std::size_t n = body.positions.size();
+      std::vector<Vec3f> normals(n, Vec3f::Zero());
+      for (const std::array<int, 3>& t : body.triangles) {
+        const Vec3f& a = body.positions[t[0]];
+        const Vec3f face = (body.positions[t[1]] - a).cross(body.positions[t[2]] - a);
+        for (int k = 0; k < 3; ++k) normals[t[k]] += face;
+      }
+      vertices.resize(6 * n);
+      for (std::size_t i = 0; i < n; ++i) {
+        const float len = normals[i].norm();
+        const Vec3f normal = len > 0 ? Vec3f(normals[i] / len) : Vec3f::UnitZ();
+        for (int k = 0; k < 3; ++k) {
+          vertices[6 * i + k] = body.positions[i][k];
+          vertices[6 * i + 3 + k] = normal[k];
+        }
+      }
+      upload_vertices(m, vertices);
+      const auto triangle_count = static_cast<GLsizei>(3 * body.triangles.size());
+      const auto edge_count = static_cast<GLsizei>(2 * body.edges.size());
+      if (triangle_count != m.triangle_count || edge_count != m.edge_count) {
+        gl.BindVertexArray(m.vao);
+        gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.triangles);
+        gl.BufferData(GL_ELEMENT_ARRAY_BUFFER, triangle_count * sizeof(int), body.triangles.data(),
+                      GL_STATIC_DRAW);
+        gl.BindVertexArray(0);
+        // Through the array target: with no vertex array bound there is no element binding.
+        gl.BindBuffer(GL_ARRAY_BUFFER, m.edges);
+        gl.BufferData(GL_ARRAY_BUFFER, edge_count * sizeof(int), body.edges.data(), GL_STATIC_DRAW);
+        m.triangle_count = triangle_count;
+        m.edge_count = edge_count;
+      }
+    }
+  }
+
+  // Obstacles as triangles (planes: 2, boxes: 12) into the scratch mesh; first[k], count[k] per
+  // obstacle. Then the springs' segments as plain positions after them.
+  void upload_scene_geometry(const Snapshot& s, std::vector<GLint>& first,
+                             std::vector<GLsizei>& count, GLint& springs_first) {
+    vertices.clear();
+    auto vertex = [&](const Vec3f& p, const Vec3f& n) {
+      vertices.insert(vertices.end(), {p.x(), p.y(), p.z(), n.x(), n.y(), n.z()});
+    };
+    first.clear();
+    count.clear();
+    for (const ObstacleSnapshot& o : s.obstacles) {
+      first.push_back(static_cast<GLint>(vertices.size() / 6));
+      if (o.kind == ObstacleKind::plane) {
+        const Vec3f u = perpendicular(o.normal), v = o.normal.cross(u);
+        const Vec3f a = 0.5f * o.size.x() * u, b = 0.5f * o.size.y() * v;
+        const Vec3f corners[4] = {o.point - a - b, o.point + a - b, o.point + a + b,
+                                  o.point - a + b};
+        for (int k : {0, 1, 2, 0, 2, 3}) vertex(corners[k], o.normal);
+      } else {
+        for (int axis = 0; axis < 3; ++axis) {
+          for (float sign : {-1.0f, 1.0f}) {
+            const Vec3f n_local = sign * Vec3f::Unit(axis);
+            const Vec3f u_local = Vec3f::Unit((axis + 1) % 3), v_local = n_local.cross(u_local);
+            const Vec3f n = o.rotation * n_local;
+            auto corner = [&](float su, float sv) {
+              const Vec3f local =
+                  (n_local + su * u_local + sv * v_local).cwiseProduct(o.half_extents);
+              return Vec3f(o.point + o.rotation * local);
+            };
+            const Vec3f c[4] = {corner(-1, -1), corner(1, -1), corner(1, 1), corner(-1, 1)};
+            for (int k : {0, 1, 2, 0, 2, 3}) vertex(c[k], n);
+          }
+        }
+      }
+      count.push_back(static_cast<GLsizei>(vertices.size() / 6) - first.back());
+    }
+    springs_first = static_cast<GLint>(vertices.size() / 6);
+    for (const SpringSnapshot& spring : s.springs) {
+      vertex(spring.from, Vec3f::UnitZ());
+      vertex(spring.to, Vec3f::UnitZ());
+    }
+    if (!vertices.empty()) upload_vertices(scratch, vertices);
+  }
+
+  // An orthographic key-light frustum around the bodies and the ground near them.
+  Mat4f light_view_proj(const Snapshot& s) const {
+    const Vec3f lo = s.bodies_min(), hi = s.bodies_max();
+    const Vec3f centre = s.bodies.empty() ? Vec3f::Zero() : Vec3f(0.5f * (lo + hi));
+    const float radius = s.bodies.empty() ? 10.0f : std::max(0.5f * (hi - lo).norm(), 0.5f);
+    const float reach = 3.0f * radius;
+    Camera light;
+    light.target = centre;
+    light.position = centre + 4.0f * reach * kKeyDirection;
+    light.up = std::abs(kKeyDirection.z()) > 0.99f ? Vec3f::UnitY() : Vec3f::UnitZ();
+    return orthographic_matrix(-reach, reach, -reach, reach, 0.1f, 8.0f * reach) *
+           view_matrix(light);
+  }
+
+  void ensure_shadow_map() {
+    if (shadow_fbo) return;
+    gl.GenTextures(1, &shadow_texture);
+    gl.BindTexture(GL_TEXTURE_2D, shadow_texture);
+    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, kShadowSize, kShadowSize, 0,
+                  GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl.GenFramebuffers(1, &shadow_fbo);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, shadow_fbo);
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadow_texture, 0);
+    gl.DrawBuffer(GL_NONE);
+    gl.ReadBuffer(GL_NONE);
+    if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+      throw std::runtime_error("the shadow map framebuffer is incomplete");
+    }
+  }
+};
+
+Renderer::Renderer(const gl::Functions& gl) : impl_(std::make_unique<Impl>(gl)) {
+  Impl& r = *impl_;
+  r.background = link(gl, "background");
+  r.shadow = link(gl, "shadow");
+  r.surface = link(gl, "surface");
+  r.line = link(gl, "line");
+  gl.GenVertexArrays(1, &r.empty_vao);
+  r.create_mesh(r.scratch);
+}
+
+Renderer::~Renderer() {
+  Impl& r = *impl_;
+  const gl::Functions& gl = r.gl;
+  for (Mesh& m : r.bodies) r.delete_mesh(m);
+  r.delete_mesh(r.scratch);
+  gl.DeleteVertexArrays(1, &r.empty_vao);
+  r.release_targets();
+  if (r.shadow_fbo) gl.DeleteFramebuffers(1, &r.shadow_fbo);
+  if (r.shadow_texture) gl.DeleteTextures(1, &r.shadow_texture);
+  for (GLuint p : {r.background, r.shadow, r.surface, r.line}) gl.DeleteProgram(p);
+}
+
+void Renderer::render(const Snapshot& s, const Camera& camera, const RenderOptions& o) {
+  Impl& r = *impl_;
+  const gl::Functions& gl = r.gl;
+  r.ensure_targets(o);
+  r.ensure_shadow_map();
+  auto t0 = Clock::now();
+  r.upload_bodies(s);
+  std::vector<GLint> first;
+  std::vector<GLsizei> count;
+  GLint springs_first = 0;
+  r.upload_scene_geometry(s, first, count, springs_first);
+  r.times.upload = seconds_since(t0);
+  t0 = Clock::now();
+
+  const float aspect = static_cast<float>(o.width) / static_cast<float>(o.height);
+  const Mat4f view_proj =
+      perspective_matrix(camera.fov, aspect, 0.05f, 500.0f) * view_matrix(camera);
+  const Mat4f light = r.light_view_proj(s);
+
+  // Shadow pass: bodies and boxes cast; planes only receive.
+  gl.Enable(GL_DEPTH_TEST);
+  gl.DepthFunc(GL_LESS);
+  gl.DepthMask(GL_TRUE);
+  gl.Disable(GL_CULL_FACE);
+  if (o.shadows) {
+    gl.BindFramebuffer(GL_FRAMEBUFFER, r.shadow_fbo);
+    gl.Viewport(0, 0, kShadowSize, kShadowSize);
+    gl.Clear(GL_DEPTH_BUFFER_BIT);
+    gl.Enable(GL_POLYGON_OFFSET_FILL);
+    gl.PolygonOffset(2.0f, 4.0f);
+    gl.UseProgram(r.shadow);
+    r.set(r.shadow, "u_light_view_proj", light);
+    for (const Mesh& m : r.bodies) {
+      gl.BindVertexArray(m.vao);
+      gl.DrawElements(GL_TRIANGLES, m.triangle_count, GL_UNSIGNED_INT, nullptr);
+    }
+    gl.BindVertexArray(r.scratch.vao);
+    for (std::size_t k = 0; k < s.obstacles.size(); ++k) {
+      if (s.obstacles[k].kind == ObstacleKind::box) gl.DrawArrays(GL_TRIANGLES, first[k], count[k]);
+    }
+    gl.Disable(GL_POLYGON_OFFSET_FILL);
+  }
+
+  gl.BindFramebuffer(GL_FRAMEBUFFER, r.draw_target());
+  gl.Viewport(0, 0, o.width, o.height);
+  gl.ClearColor(0, 0, 0, 1);
+  gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  // Background gradient, behind everything.
+  gl.Disable(GL_DEPTH_TEST);
+  gl.DepthMask(GL_FALSE);
+  gl.UseProgram(r.background);
+  r.set(r.background, "u_bottom", Vec3f(0.78f, 0.80f, 0.83f));
+  r.set(r.background, "u_top", Vec3f(0.36f, 0.45f, 0.58f));
+  gl.BindVertexArray(r.empty_vao);
+  gl.DrawArrays(GL_TRIANGLES, 0, 3);
+  gl.DepthMask(GL_TRUE);
+  gl.Enable(GL_DEPTH_TEST);
+
+  gl.UseProgram(r.surface);
+  r.set(r.surface, "u_view_proj", view_proj);
+  r.set(r.surface, "u_light_view_proj", light);
+  r.set(r.surface, "u_camera", camera.position);
+  r.set(r.surface, "u_key_direction", kKeyDirection);
+  r.set(r.surface, "u_fill_direction", kFillDirection);
+  r.set(r.surface, "u_shadows", o.shadows ? 1 : 0);
+  gl.ActiveTexture(GL_TEXTURE0);
+  gl.BindTexture(GL_TEXTURE_2D, r.shadow_texture);
+  r.set(r.surface, "u_shadow_map", 0);
+  gl.BindVertexArray(r.scratch.vao);
+  for (std::size_t k = 0; k < s.obstacles.size(); ++k) {
+    const ObstacleSnapshot& ob = s.obstacles[k];
+    const bool plane = ob.kind == ObstacleKind::plane;
+    r.set(r.surface, "u_grid", plane ? 1 : 0);
+    if (plane) {
+      const Vec3f u = perpendicular(ob.normal);
+      r.set(r.surface, "u_grid_origin", ob.point);
+      r.set(r.surface, "u_grid_u", u);
+      r.set(r.surface, "u_grid_v", Vec3f(ob.normal.cross(u)));
+      r.set(r.surface, "u_base_color", Vec3f(0.62f, 0.60f, 0.56f));
+      r.set(r.surface, "u_roughness", 0.9f);
+    } else {
+      r.set(r.surface, "u_base_color", Vec3f(0.45f, 0.52f, 0.62f));
+      r.set(r.surface, "u_roughness", 0.6f);
+    }
+    gl.DrawArrays(GL_TRIANGLES, first[k], count[k]);
+  }
+  r.set(r.surface, "u_grid", 0);
+  if (o.wireframe) {
+    gl.Enable(GL_POLYGON_OFFSET_FILL);
+    gl.PolygonOffset(1.0f, 1.0f);
+  }
+  for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+    r.set(r.surface, "u_base_color", s.bodies[b].color);
+    r.set(r.surface, "u_roughness", s.bodies[b].roughness);
+    gl.BindVertexArray(r.bodies[b].vao);
+    gl.DrawElements(GL_TRIANGLES, r.bodies[b].triangle_count, GL_UNSIGNED_INT, nullptr);
+  }
+  gl.Disable(GL_POLYGON_OFFSET_FILL);
+
+  gl.UseProgram(r.line);
+  r.set(r.line, "u_view_proj", view_proj);
+  r.set(r.line, "u_point_size", 1.0f);
+  if (o.wireframe) {
+    r.set(r.line, "u_color", Vec3f(0.08f, 0.08f, 0.1f));
+    for (const Mesh& m : r.bodies) {
+      gl.BindVertexArray(m.vao);
+      gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.edges);
+      gl.DrawElements(GL_LINES, m.edge_count, GL_UNSIGNED_INT, nullptr);
+      gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.triangles);
+    }
+  }
+  if (!s.springs.empty()) {
+    gl.Disable(GL_DEPTH_TEST);
+    gl.Enable(GL_PROGRAM_POINT_SIZE);
+    gl.BindVertexArray(r.scratch.vao);
+    r.set(r.line, "u_color", Vec3f(0.95f, 0.85f, 0.2f));
+    const auto n = static_cast<GLsizei>(2 * s.springs.size());
+    gl.DrawArrays(GL_LINES, springs_first, n);
+    r.set(r.line, "u_point_size", 7.0f);
+    gl.DrawArrays(GL_POINTS, springs_first, n);
+    gl.Disable(GL_PROGRAM_POINT_SIZE);
+    gl.Enable(GL_DEPTH_TEST);
+  }
+  gl.BindVertexArray(0);
+  r.resolve();
+  gl.Finish();
+  r.times.draw = seconds_since(t0);
+}
+
+void Renderer::render_bare(const Snapshot& s, const Camera& camera, const RenderOptions& o) {
+  Impl& r = *impl_;
+  const gl::Functions& gl = r.gl;
+  r.ensure_targets(o);
+  r.upload_bodies(s);
+  const auto t0 = Clock::now();
+  const float aspect = static_cast<float>(o.width) / static_cast<float>(o.height);
+  gl.BindFramebuffer(GL_FRAMEBUFFER, r.draw_target());
+  gl.Viewport(0, 0, o.width, o.height);
+  gl.Enable(GL_DEPTH_TEST);
+  gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  gl.UseProgram(r.line);
+  r.set(r.line, "u_view_proj",
+        Mat4f(perspective_matrix(camera.fov, aspect, 0.05f, 500.0f) * view_matrix(camera)));
+  r.set(r.line, "u_point_size", 1.0f);
+  r.set(r.line, "u_color", Vec3f(0.8f, 0.3f, 0.3f));
+  for (const Mesh& m : r.bodies) {
+    gl.BindVertexArray(m.vao);
+    gl.DrawElements(GL_TRIANGLES, m.triangle_count, GL_UNSIGNED_INT, nullptr);
+  }
+  gl.BindVertexArray(0);
+  r.resolve();
+  gl.Finish();
+  r.times.draw = seconds_since(t0);
+}
+
+void Renderer::read_rgb(std::vector<unsigned char>& rgb) const {
+  const Impl& r = *impl_;
+  const gl::Functions& gl = r.gl;
+  std::vector<unsigned char> rgba(4 * static_cast<std::size_t>(r.width) * r.height);
+  gl.BindFramebuffer(GL_READ_FRAMEBUFFER, r.resolve_fbo);
+  gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+  gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+  gl.ReadPixels(0, 0, r.width, r.height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+  rgb.resize(3 * static_cast<std::size_t>(r.width) * r.height);
+  for (int y = 0; y < r.height; ++y) {
+    const unsigned char* src =
+        rgba.data() + 4 * static_cast<std::size_t>(r.height - 1 - y) * r.width;
+    unsigned char* dst = rgb.data() + 3 * static_cast<std::size_t>(y) * r.width;
+    for (int x = 0; x < r.width; ++x) {
+      dst[3 * x] = src[4 * x];
+      dst[3 * x + 1] = src[4 * x + 1];
+      dst[3 * x + 2] = src[4 * x + 2];
+    }
+  }
+}
+
+const RenderTimes& Renderer::times() const {
+  return impl_->times;
+}
+int Renderer::samples() const {
+  return impl_->samples_in_use;
+}
+
+}  // namespace pbm

@@ -1,0 +1,53 @@
+// The renderer shared by the studio viewport and the headless path: draws a Snapshot from a
+// Camera with OpenGL 3.3 core through a loaded function table (gl_functions.h), into its own
+// (multisampled) framebuffer. Key light with a shadow map, fill light, sky ambient, tone mapping,
+// a background gradient; planes as finite gridded quads, boxes, bodies with smooth normals
+// recomputed every frame, optional finite-element wireframe, springs as lines with end points.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "camera.h"
+#include "gl_functions.h"
+#include "sim/snapshot.h"
+
+namespace pbm {
+
+struct RenderOptions {
+  int width = 1280, height = 720;
+  int samples = 4;  // MSAA samples asked for (1 = none); clamped to what the context offers
+  bool shadows = true;
+  bool wireframe = false;
+};
+
+struct RenderTimes {
+  double upload = 0;  // [s] normals, vertex and index uploads of the last frame
+  double draw = 0;    // [s] every pass of the last frame, to a finished image
+};
+
+class Renderer {
+ public:
+  // Compiles the embedded shaders; throws std::runtime_error with the GL info log on failure.
+  // The context must stay current while the renderer lives.
+  explicit Renderer(const gl::Functions& gl);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  void render(const Snapshot& snapshot, const Camera& camera, const RenderOptions& options);
+  // The bodies' triangles alone with a flat-colour shader: the rasterizer's own cost, against
+  // which `pbm bench render` measures ours.
+  void render_bare(const Snapshot& snapshot, const Camera& camera, const RenderOptions& options);
+  // The last image, rows top to bottom, 8-bit RGB.
+  void read_rgb(std::vector<unsigned char>& rgb) const;
+
+  const RenderTimes& times() const;
+  int samples() const;  // MSAA samples in use
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace pbm
