@@ -1,0 +1,177 @@
+// The headless renderer as `pbm render` drives it: golden frames within 35 dB (regenerate with
+// tools/regen-golden), a frame rendered alone equals the same frame of a sequence, the picture
+// follows the physics, and bad input stops before any work with exit 2 and nothing left behind.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "osmesa_context.h"
+#include "png_io.h"
+#include "renderer.h"
+#include "scene/scene_json.h"
+#include "sim/snapshot.h"
+#include "sim/world.h"
+
+namespace pbm {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int code = -1;
+  std::string output;
+};
+
+Result pbm_cli(const std::string& args) {
+  const std::string cmd = std::string(PBM_BINARY_DIR) + "/app/pbm " + args + " 2>&1";
+  Result r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  char buf[4096];
+  while (std::fgets(buf, sizeof buf, pipe)) r.output += buf;
+  const int status = pclose(pipe);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("pbm_render_test_" + std::to_string(getpid())) / name;
+  fs::remove_all(dir);
+  return dir;
+}
+
+std::string scene_path(const std::string& name) {
+  return std::string(PBM_SOURCE_DIR) + "/scenes/" + name + ".json";
+}
+
+std::string golden(const std::string& name) {
+  return std::string(PBM_SOURCE_DIR) + "/tests/golden/" + name + ".png";
+}
+
+class Golden : public testing::TestWithParam<const char*> {};
+
+TEST_P(Golden, Frames0And30MatchTheReferencesWithin35dB) {
+  const std::string scene = GetParam();
+  const fs::path out = temp_dir(scene);
+  const Result r = pbm_cli("render " + scene_path(scene) + " --frames 0:30 --size 320x240 --out " +
+                           out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (const char* frame : {"0000", "0030"}) {
+    const RgbImage image = read_png((out / ("frame_" + std::string(frame) + ".png")).string());
+    const RgbImage reference = read_png(golden(scene + "_" + frame));
+    ASSERT_EQ(image.width, 320);
+    ASSERT_EQ(image.height, 240);
+    const double db = psnr(reference, image);
+    EXPECT_GE(db, 35.0) << scene << " frame " << frame << " (tools/regen-golden rewrites them)";
+  }
+  // Frame 30 is not frame 0: the scene moved (a golden that could not fail would not).
+  EXPECT_LT(psnr(read_png(golden(scene + "_0000")), read_png(golden(scene + "_0030"))), 30.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(BookScenes, Golden, testing::Values("jello-ball", "morphing-shell"));
+
+TEST(Render, AFrameAloneIsTheSameImageAsInASequence) {
+  const fs::path alone = temp_dir("alone"), sequence = temp_dir("sequence");
+  const std::string common = "render " + scene_path("jello-ball") + " --size 160x120 ";
+  ASSERT_EQ(pbm_cli(common + "--frames 12:12 --out " + alone.string()).code, 0);
+  ASSERT_EQ(pbm_cli(common + "--frames 9:12 --out " + sequence.string()).code, 0);
+  EXPECT_FALSE(fs::exists(alone / "frame_0011.png"));
+  const RgbImage a = read_png((alone / "frame_0012.png").string());
+  const RgbImage b = read_png((sequence / "frame_0012.png").string());
+  EXPECT_TRUE(std::isinf(psnr(a, b)));
+}
+
+// Pixels where the ball is: those that change when it is removed (shadows off, so only the
+// ball itself counts). Returns their count and mean row.
+struct Mask {
+  long count = 0;
+  double mean_row = 0;
+};
+
+Mask ball_mask(Renderer& renderer, Snapshot snapshot, const Camera& camera,
+               const RenderOptions& options) {
+  std::vector<unsigned char> with, without;
+  renderer.render(snapshot, camera, options);
+  renderer.read_rgb(with);
+  snapshot.bodies.clear();
+  renderer.render(snapshot, camera, options);
+  renderer.read_rgb(without);
+  Mask mask;
+  for (int y = 0; y < options.height; ++y) {
+    for (int x = 0; x < options.width; ++x) {
+      const std::size_t k = 3 * (static_cast<std::size_t>(y) * options.width + x);
+      if (with[k] != without[k] || with[k + 1] != without[k + 1] || with[k + 2] != without[k + 2]) {
+        ++mask.count;
+        mask.mean_row += y;
+      }
+    }
+  }
+  if (mask.count > 0) mask.mean_row /= static_cast<double>(mask.count);
+  return mask;
+}
+
+TEST(Render, TheBallsPixelsFollowItDownTheImage) {
+  OsmesaContext context;
+  Renderer renderer(context.functions());
+  const Model model = build_model(load_scene(scene_path("jello-ball")));
+  const Inputs inputs;
+  Workspace ws;
+  init_workspace(model, inputs, ws);
+  State state = initial_state(model);
+  const Camera camera = camera_from_scene(*model.scene.camera);
+  RenderOptions options;
+  options.width = 320;
+  options.height = 240;
+  options.shadows = false;
+  const Mask at_0 = ball_mask(renderer, make_snapshot(model, state, inputs, ws), camera, options);
+  for (int f = 0; f < 15; ++f) ASSERT_TRUE(advance_frame(model, state, ws).ok);
+  const Mask at_15 = ball_mask(renderer, make_snapshot(model, state, inputs, ws), camera, options);
+  // The ball is in the picture (removing it changes hundreds of pixels)...
+  EXPECT_GT(at_0.count, 500);
+  EXPECT_GT(at_15.count, 500);
+  // ... and it fell: 2 m in 0.47 s at this camera is tens of rows (image rows grow downward).
+  EXPECT_GT(at_15.mean_row, at_0.mean_row + 10.0)
+      << "rows " << at_0.mean_row << " -> " << at_15.mean_row;
+}
+
+TEST(Render, BadOutputAndOptionsExit2BeforeAnyWork) {
+  const std::string scene = scene_path("jello-ball");
+  const fs::path fresh = temp_dir("never_created");
+  struct Case {
+    std::string args, needle;
+  };
+  const fs::path file = temp_dir("a_file");
+  fs::create_directories(file.parent_path());
+  FILE* f = std::fopen(file.c_str(), "w");
+  ASSERT_NE(f, nullptr);
+  std::fclose(f);
+  const Case cases[] = {
+      {"--size 0x0 --out " + fresh.string(), "--size"},
+      {"--size 100000x720 --out " + fresh.string(), "--size"},
+      {"--size big --out " + fresh.string(), "--size"},
+      {"--frames 5:2 --out " + fresh.string(), "--frames"},
+      {"--frames 0:99999 --out " + fresh.string(), "--frames"},
+      {"--frames 0:1 --seconds 1 --out " + fresh.string(), "--frames"},
+      {"--samples 0 --out " + fresh.string(), "--samples"},
+      {"--frames 0:1 --out " + file.string(), "--out"},
+      {"--frames 0:1 --out /proc/pbm-cannot-write", "--out"},
+  };
+  for (const Case& c : cases) {
+    const Result r = pbm_cli("render " + scene + " " + c.args);
+    EXPECT_EQ(r.code, 2) << c.args << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.needle), std::string::npos) << c.args << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(fresh)) << c.args << " left " << fresh;
+  }
+  const Result missing = pbm_cli("render /no/such/scene.json --out " + fresh.string());
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_NE(missing.output.find("/no/such/scene.json"), std::string::npos);
+  EXPECT_FALSE(fs::exists(fresh));
+}
+
+}  // namespace
+}  // namespace pbm
