@@ -39,6 +39,7 @@ json full_scene() {
   return json::parse(R"({
     "name": "jello-ball",
     "gravity": [0, 0, -9.81],
+    "camera": {"position": [0, -10, 3], "target": [0, 0, 1], "up": [0, 0, 2], "fov": 35},
     "solver": {"dt": 0.031, "integrator": "rk45", "tolerance": 1e-5, "fps": 24, "duration": 3,
                "contact_step_reduction": true, "contact_dt_factor": 0.5, "max_retries": 6,
                "energy_growth_bound": 2},
@@ -50,7 +51,8 @@ json full_scene() {
        "position": [1, 2, 3], "orientation": [2, 0, 0, 0], "velocity": [0.5, 0, 0],
        "angular_velocity": [0, 0, 1],
        "tessellation": {"kind": "quads", "rings": 4, "segments": 5},
-       "material": {"w0": 10, "w1": 5, "nodal_mass": 0.25, "damping": 0.7, "color": [1, 0.5, 0]}},
+       "material": {"w0": 10, "w1": 5, "nodal_mass": 0.25, "damping": 0.7, "color": [1, 0.5, 0],
+                    "roughness": 0.2}},
       {"orientation": [1, 1, 0, 0], "material": {"mass": 3}}
     ],
     "obstacles": [
@@ -375,8 +377,26 @@ TEST(SceneJsonErrors, UnknownKeysAtEveryLevel) {
   j["tracks"][1]["speed"] = 1;
   expect_error(j, "tracks[1].speed", "unknown key 'speed'");
   j = full_scene();
-  j["camera"] = json::object();  // not part of this format
-  expect_error(j, "camera", "unknown key 'camera'");
+  j["lights"] = json::object();  // not part of this format
+  expect_error(j, "lights", "unknown key 'lights'");
+  j = full_scene();
+  j["camera"] = {{"position", {0, -10, 2}}, {"lens", 35}};
+  expect_error(j, "camera.lens", "unknown key 'lens'");
+}
+
+TEST(SceneJsonErrors, CameraMustSeeSomething) {
+  json j = full_scene();
+  j["camera"] = {{"position", {0, -10, 2}}, {"target", {0, 0, 1}}, {"fov", 180}};
+  expect_error(j, "camera.fov", "must be in (0, 180)");
+  j["camera"] = {{"position", {0, 0, 5}}, {"target", {0, 0, 1}}};  // looking along up
+  expect_error(j, "camera", "up must not be parallel");
+  j["camera"] = {{"position", {1, 2, 3}}, {"target", {1, 2, 3}}};
+  expect_error(j, "camera", "position and target must differ");
+  j["camera"] = {{"position", {0, -10, 2}}, {"target", {0, 0, 1}}, {"fov", 50}};
+  const Scene scene = parse_scene(j.dump(), kFile);
+  ASSERT_TRUE(scene.camera.has_value());
+  EXPECT_EQ(scene.camera->fov, 50);
+  EXPECT_EQ(scene.camera->up, Vec3(0, 0, 1));
 }
 
 TEST(SceneJsonErrors, DuplicateKeyNamesItsPath) {
@@ -721,8 +741,7 @@ TEST(SceneSchema, IsValidJsonListingExactlyTheTopLevelKeys) {
   std::set<std::string> keys;
   for (const auto& [key, value] : schema["properties"].items()) keys.insert(key);
   EXPECT_EQ(keys, (std::set<std::string>{"name", "gravity", "solver", "bodies", "obstacles",
-                                         "force_fields", "springs", "tracks"}));
-  EXPECT_FALSE(schema["properties"].contains("camera"));
+                                         "force_fields", "springs", "tracks", "camera"}));
   EXPECT_EQ(schema["required"], json::array({"bodies"}));
   // Every object schema with named properties is closed, like the parser.
   for (const auto& [name, def] : schema["$defs"].items()) {
@@ -743,8 +762,8 @@ TEST(SceneSchema, AcceptsWhatTheParserWritesAndRejectsWhatItRejects) {
   bad["bodies"][0]["material"]["foo"] = 1;
   EXPECT_EQ(validate(schema, schema, bad, ""), "bodies[0].material.foo: forbidden");
   bad = written;
-  bad["camera"] = json::object();
-  EXPECT_EQ(validate(schema, schema, bad, ""), "camera: forbidden");
+  bad["lights"] = json::object();
+  EXPECT_EQ(validate(schema, schema, bad, ""), "lights: forbidden");
   bad = written;
   bad["obstacles"][0]["half_extents"] = {1, 1, 1};  // box key on a plane
   EXPECT_EQ(validate(schema, schema, bad, ""), "obstacles[0].half_extents: forbidden");
