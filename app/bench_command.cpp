@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "bench_render.h"
 #include "bullet_soft_ellipsoid.h"
 #include "core/error.h"
 #include "scene/scene_json.h"
@@ -78,8 +79,9 @@ double time_bullet(const Scene& scene, int nodes, int steps, int& bullet_nodes) 
 }  // namespace
 
 int run_bench(const BenchOptions& o) {
+  if (o.what == "render") return run_bench_render(o.scene, std::max(5, o.steps / 2));
   if (o.what != "deform") {
-    spdlog::error("unknown benchmark '{}' (known: deform)", o.what);
+    spdlog::error("unknown benchmark '{}' (known: deform, render)", o.what);
     return 2;
   }
   Scene scene;

@@ -39,8 +39,9 @@ int main(int argc, char** argv) {
   render_cmd->add_flag("--wireframe", render.wireframe, "overlay the finite-element mesh");
 
   pbm::BenchOptions bench;
-  auto* bench_cmd = app.add_subcommand("bench", "benchmarks: deform (ours vs Bullet btSoftBody)");
-  bench_cmd->add_option("what", bench.what, "deform")->required();
+  auto* bench_cmd = app.add_subcommand(
+      "bench", "benchmarks: deform (ours vs Bullet btSoftBody), render (ours vs a bare draw)");
+  bench_cmd->add_option("what", bench.what, "deform | render")->required();
   bench_cmd->add_option("--steps", bench.steps, "steps timed per size");
   bench_cmd->add_option("--max-nodes", bench.max_nodes, "largest node count to run");
 

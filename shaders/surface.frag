@@ -10,7 +10,7 @@ uniform vec3 u_base_color;
 uniform float u_roughness;
 uniform vec3 u_key_direction;   // towards the key light
 uniform vec3 u_fill_direction;  // towards the fill light
-uniform sampler2D u_shadow_map;
+uniform sampler2DShadow u_shadow_map;
 uniform int u_shadows;
 uniform int u_grid;
 uniform vec3 u_grid_origin;
@@ -22,16 +22,15 @@ float key_visibility(vec3 n) {
   if (u_shadows == 0) return 1.0;
   vec3 p = v_light_clip.xyz / v_light_clip.w * 0.5 + 0.5;
   if (p.x <= 0.0 || p.x >= 1.0 || p.y <= 0.0 || p.y >= 1.0 || p.z >= 1.0) return 1.0;
-  float bias = 0.0015 + 0.004 * (1.0 - abs(dot(n, u_key_direction)));
+  float bias = 0.002 + 0.006 * (1.0 - abs(dot(n, u_key_direction)));
   vec2 texel = 1.0 / vec2(textureSize(u_shadow_map, 0));
+  // Four comparisons, each filtered over 2x2 texels by the sampler: a soft 3x3 edge.
   float lit = 0.0;
-  for (int dx = -1; dx <= 1; ++dx) {
-    for (int dy = -1; dy <= 1; ++dy) {
-      float depth = texture(u_shadow_map, p.xy + vec2(dx, dy) * texel).r;
-      lit += p.z - bias <= depth ? 1.0 : 0.0;
-    }
-  }
-  return lit / 9.0;
+  lit += texture(u_shadow_map, vec3(p.xy + vec2(-0.5, -0.5) * texel, p.z - bias));
+  lit += texture(u_shadow_map, vec3(p.xy + vec2(0.5, -0.5) * texel, p.z - bias));
+  lit += texture(u_shadow_map, vec3(p.xy + vec2(-0.5, 0.5) * texel, p.z - bias));
+  lit += texture(u_shadow_map, vec3(p.xy + vec2(0.5, 0.5) * texel, p.z - bias));
+  return 0.25 * lit;
 }
 
 void main() {

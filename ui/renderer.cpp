@@ -15,7 +15,7 @@ using Clock = std::chrono::steady_clock;
 using Vec3f = Eigen::Vector3f;
 using Mat4f = Eigen::Matrix4f;
 
-constexpr int kShadowSize = 2048;
+constexpr int kShadowSize = 1024;
 const Vec3f kKeyDirection = Vec3f(0.45f, -0.35f, 0.82f).normalized();  // towards the key light
 const Vec3f kFillDirection = Vec3f(-0.7f, 0.4f, 0.3f).normalized();
 
@@ -306,8 +306,11 @@ struct Renderer::Impl {
     gl.BindTexture(GL_TEXTURE_2D, shadow_texture);
     gl.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, kShadowSize, kShadowSize, 0,
                   GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    // Depth comparison in the sampler with linear filtering: each fetch is a 2x2 PCF.
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     gl.GenFramebuffers(1, &shadow_fbo);
@@ -390,17 +393,6 @@ void Renderer::render(const Snapshot& s, const Camera& camera, const RenderOptio
   gl.Viewport(0, 0, o.width, o.height);
   gl.ClearColor(0, 0, 0, 1);
   gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  // Background gradient, behind everything.
-  gl.Disable(GL_DEPTH_TEST);
-  gl.DepthMask(GL_FALSE);
-  gl.UseProgram(r.background);
-  r.set(r.background, "u_bottom", Vec3f(0.78f, 0.80f, 0.83f));
-  r.set(r.background, "u_top", Vec3f(0.36f, 0.45f, 0.58f));
-  gl.BindVertexArray(r.empty_vao);
-  gl.DrawArrays(GL_TRIANGLES, 0, 3);
-  gl.DepthMask(GL_TRUE);
-  gl.Enable(GL_DEPTH_TEST);
-
   gl.UseProgram(r.surface);
   r.set(r.surface, "u_view_proj", view_proj);
   r.set(r.surface, "u_light_view_proj", light);
@@ -411,6 +403,20 @@ void Renderer::render(const Snapshot& s, const Camera& camera, const RenderOptio
   gl.ActiveTexture(GL_TEXTURE0);
   gl.BindTexture(GL_TEXTURE_2D, r.shadow_texture);
   r.set(r.surface, "u_shadow_map", 0);
+  // Bodies first: the planes behind them then fail the depth test before shading.
+  r.set(r.surface, "u_grid", 0);
+  if (o.wireframe) {
+    gl.Enable(GL_POLYGON_OFFSET_FILL);
+    gl.PolygonOffset(1.0f, 1.0f);
+  }
+  for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+    r.set(r.surface, "u_base_color", s.bodies[b].color);
+    r.set(r.surface, "u_roughness", s.bodies[b].roughness);
+    gl.BindVertexArray(r.bodies[b].vao);
+    gl.DrawElements(GL_TRIANGLES, r.bodies[b].triangle_count, GL_UNSIGNED_INT, nullptr);
+  }
+  gl.Disable(GL_POLYGON_OFFSET_FILL);
+
   gl.BindVertexArray(r.scratch.vao);
   for (std::size_t k = 0; k < s.obstacles.size(); ++k) {
     const ObstacleSnapshot& ob = s.obstacles[k];
@@ -429,18 +435,17 @@ void Renderer::render(const Snapshot& s, const Camera& camera, const RenderOptio
     }
     gl.DrawArrays(GL_TRIANGLES, first[k], count[k]);
   }
-  r.set(r.surface, "u_grid", 0);
-  if (o.wireframe) {
-    gl.Enable(GL_POLYGON_OFFSET_FILL);
-    gl.PolygonOffset(1.0f, 1.0f);
-  }
-  for (std::size_t b = 0; b < s.bodies.size(); ++b) {
-    r.set(r.surface, "u_base_color", s.bodies[b].color);
-    r.set(r.surface, "u_roughness", s.bodies[b].roughness);
-    gl.BindVertexArray(r.bodies[b].vao);
-    gl.DrawElements(GL_TRIANGLES, r.bodies[b].triangle_count, GL_UNSIGNED_INT, nullptr);
-  }
-  gl.Disable(GL_POLYGON_OFFSET_FILL);
+  // The background gradient last, at the far plane with LEQUAL: only pixels nothing covered
+  // run its shader (on a software rasterizer the fill is the cost).
+  gl.DepthFunc(GL_LEQUAL);
+  gl.DepthMask(GL_FALSE);
+  gl.UseProgram(r.background);
+  r.set(r.background, "u_bottom", Vec3f(0.78f, 0.80f, 0.83f));
+  r.set(r.background, "u_top", Vec3f(0.36f, 0.45f, 0.58f));
+  gl.BindVertexArray(r.empty_vao);
+  gl.DrawArrays(GL_TRIANGLES, 0, 3);
+  gl.DepthMask(GL_TRUE);
+  gl.DepthFunc(GL_LESS);
 
   gl.UseProgram(r.line);
   r.set(r.line, "u_view_proj", view_proj);
@@ -477,6 +482,10 @@ void Renderer::render_bare(const Snapshot& s, const Camera& camera, const Render
   const gl::Functions& gl = r.gl;
   r.ensure_targets(o);
   r.upload_bodies(s);
+  std::vector<GLint> first;
+  std::vector<GLsizei> count;
+  GLint springs_first = 0;
+  r.upload_scene_geometry(s, first, count, springs_first);
   const auto t0 = Clock::now();
   const float aspect = static_cast<float>(o.width) / static_cast<float>(o.height);
   gl.BindFramebuffer(GL_FRAMEBUFFER, r.draw_target());
@@ -492,6 +501,9 @@ void Renderer::render_bare(const Snapshot& s, const Camera& camera, const Render
     gl.BindVertexArray(m.vao);
     gl.DrawElements(GL_TRIANGLES, m.triangle_count, GL_UNSIGNED_INT, nullptr);
   }
+  gl.BindVertexArray(r.scratch.vao);
+  for (std::size_t k = 0; k < s.obstacles.size(); ++k)
+    gl.DrawArrays(GL_TRIANGLES, first[k], count[k]);
   gl.BindVertexArray(0);
   r.resolve();
   gl.Finish();

@@ -36,8 +36,9 @@ class Renderer {
   Renderer& operator=(const Renderer&) = delete;
 
   void render(const Snapshot& snapshot, const Camera& camera, const RenderOptions& options);
-  // The bodies' triangles alone with a flat-colour shader: the rasterizer's own cost, against
-  // which `pbm bench render` measures ours.
+  // The same triangles (bodies and obstacles, same framebuffer and samples) with a flat-colour
+  // shader and nothing else: the rasterizer's own cost, against which `pbm bench render`
+  // measures ours.
   void render_bare(const Snapshot& snapshot, const Camera& camera, const RenderOptions& options);
   // The last image, rows top to bottom, 8-bit RGB.
   void read_rgb(std::vector<unsigned char>& rgb) const;

@@ -1,0 +1,99 @@
+#include "bench_render.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include "camera.h"
+#include "core/error.h"
+#include "osmesa_context.h"
+#include "renderer.h"
+#include "scene/scene_json.h"
+#include "sim/model.h"
+#include "sim/snapshot.h"
+#include "sim/world.h"
+
+namespace pbm {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+}  // namespace
+
+int run_bench_render(const std::string& scene_path, int frames) {
+  Scene base;
+  try {
+    base = load_scene(scene_path);
+  } catch (const Error& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+  std::unique_ptr<OsmesaContext> context;
+  std::unique_ptr<Renderer> renderer;
+  try {
+    context = std::make_unique<OsmesaContext>();
+    renderer = std::make_unique<Renderer>(context->functions());
+  } catch (const std::exception& e) {
+    spdlog::error("headless OpenGL: {}", e.what());
+    return 1;
+  }
+  RenderOptions options;  // 1280x720, 4 samples, shadows
+  std::printf("bench render: '%s' at %dx%d, %d frames each, median ms per frame\n",
+              base.name.c_str(), options.width, options.height, frames);
+  std::printf("%8s %10s %10s %10s %10s %10s %10s\n", "nodes", "triangles", "simulate", "upload",
+              "draw", "bare draw", "draw/bare");
+  for (int resolution : {45, 128}) {  // about 2k and 16k nodes
+    Scene scene = base;
+    BodyDef& body = scene.bodies[0];
+    body.tessellation.rings = resolution;
+    body.tessellation.segments = resolution;
+    // The same ball at both resolutions (see bench deform).
+    if (body.material.nodal_mass > 0) {
+      body.material.mass = body.material.nodal_mass * 258;
+      body.material.nodal_mass = 0;
+    }
+    const Model model = build_model(scene);
+    const Inputs inputs;
+    Workspace ws;
+    init_workspace(model, inputs, ws);
+    State state = initial_state(model);
+    const Camera camera = model.scene.camera
+                              ? camera_from_scene(*model.scene.camera)
+                              : frame_bodies(make_snapshot(model, state, inputs, ws), 16.0f / 9.0f);
+    std::vector<double> simulate, upload, draw, bare;
+    std::size_t triangles = 0;
+    for (int f = 0; f < frames + 3; ++f) {  // 3 warm-up frames: shader JIT, buffer sizes
+      auto t0 = Clock::now();
+      if (!advance_frame(model, state, ws).ok) break;
+      const Snapshot snapshot = make_snapshot(model, state, inputs, ws);
+      const double sim_ms = ms_since(t0);
+      triangles = snapshot.bodies[0].triangles.size();
+      renderer->render(snapshot, camera, options);
+      const RenderTimes times = renderer->times();
+      renderer->render_bare(snapshot, camera, options);
+      if (f < 3) continue;
+      simulate.push_back(sim_ms);
+      upload.push_back(1e3 * times.upload);
+      draw.push_back(1e3 * times.draw);
+      bare.push_back(1e3 * renderer->times().draw);
+    }
+    std::printf("%8d %10zu %10.2f %10.2f %10.2f %10.2f %10.2f\n", model.bodies[0].n_nodes(),
+                triangles, median(simulate), median(upload), median(draw), median(bare),
+                median(draw) / median(bare));
+    std::fflush(stdout);
+  }
+  return 0;
+}
+
+}  // namespace pbm
