@@ -145,12 +145,11 @@ int run_render(const RenderCommandOptions& o) {
   options.height = plan.height;
   options.samples = o.samples;
   options.wireframe = o.wireframe;
-  // The camera is fixed for the whole render (the scene's, or framed on frame 0), so frame k
-  // is the same image whether rendered alone or in a sequence.
-  const Camera camera = model.scene.camera
-                            ? camera_from_scene(*model.scene.camera)
-                            : frame_bodies(make_snapshot(model, state, inputs, ws),
-                                           static_cast<float>(plan.width) / plan.height);
+  // The scene's camera moves only with its tracks (a function of time); without one the
+  // framing of frame 0 holds for the whole render. Either way frame k is the same image whether
+  // rendered alone or in a sequence.
+  const Camera framed = frame_bodies(make_snapshot(model, state, inputs, ws),
+                                     static_cast<float>(plan.width) / plan.height);
   RgbImage image;
   image.width = plan.width;
   image.height = plan.height;
@@ -168,7 +167,9 @@ int run_render(const RenderCommandOptions& o) {
         }
       }
       if (frame < plan.first) continue;
-      renderer->render(make_snapshot(model, state, inputs, ws), camera, options);
+      const Snapshot snapshot = make_snapshot(model, state, inputs, ws);  // drive at its time
+      renderer->render(snapshot, model.scene.camera ? camera_from_drive(ws.drive) : framed,
+                       options);
       renderer->read_rgb(image.pixels);
       write_png((fs::path(o.out) / frame_name(frame)).string(), image);
       const long done = frame - plan.first + 1;

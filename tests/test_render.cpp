@@ -10,11 +10,13 @@
 #include <filesystem>
 #include <string>
 
+#include "core/error.h"
 #include "osmesa_context.h"
 #include "png_io.h"
 #include "renderer.h"
 #include "scene/scene_json.h"
 #include "sim/snapshot.h"
+#include "sim/tracks.h"
 #include "sim/world.h"
 
 namespace pbm {
@@ -137,6 +139,31 @@ TEST(Render, TheBallsPixelsFollowItDownTheImage) {
   // ... and it fell: 2 m in 0.47 s at this camera is tens of rows (image rows grow downward).
   EXPECT_GT(at_15.mean_row, at_0.mean_row + 10.0)
       << "rows " << at_0.mean_row << " -> " << at_15.mean_row;
+}
+
+TEST(Render, CameraTracksMoveTheSceneCamera) {
+  Scene scene = load_scene(scene_path("jello-ball"));
+  TrackDef track;
+  track.target = "camera.position[0]";
+  track.keys = {{0.0, 1.0}, {10.0, -6.0}};
+  scene.tracks.push_back(track);
+  const Model model = build_model(scene);
+  Drive drive;
+  evaluate_drive(model, 0.0, drive);
+  EXPECT_FLOAT_EQ(camera_from_drive(drive).position.x(), 1.0f);
+  EXPECT_EQ(camera_from_drive(drive).target, camera_from_scene(*scene.camera).target);
+  evaluate_drive(model, 5.0, drive);
+  EXPECT_FLOAT_EQ(camera_from_drive(drive).position.x(), -2.5f);  // halfway, linear keys
+  // A camera track needs a camera to move.
+  const std::string text = R"({"bodies": [{"material": {"mass": 1}}],
+    "tracks": [{"target": "camera.fov", "keys": [[0, 30], [1, 40]]}]})";
+  try {
+    parse_scene(text, "cam.json");
+    ADD_FAILURE() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("tracks[0].target"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("need a 'camera'"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Render, BadOutputAndOptionsExit2BeforeAnyWork) {

@@ -15,6 +15,15 @@ Camera camera_from_scene(const CameraDef& def) {
   return c;
 }
 
+Camera camera_from_drive(const Drive& drive) {
+  Camera c;
+  c.position = drive.camera_position.cast<float>();
+  c.target = drive.camera_target.cast<float>();
+  c.up = drive.camera_up.cast<float>();
+  c.fov = static_cast<float>(std::clamp(drive.camera_fov, 1.0, 179.0));
+  return c;
+}
+
 Camera frame_bodies(const Snapshot& snapshot, float aspect) {
   Camera c;
   if (snapshot.bodies.empty()) return c;

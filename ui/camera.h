@@ -5,6 +5,7 @@
 
 #include "scene/scene.h"
 #include "sim/snapshot.h"
+#include "sim/tracks.h"
 
 namespace pbm {
 
@@ -16,6 +17,8 @@ struct Camera {
 };
 
 Camera camera_from_scene(const CameraDef& def);
+// The scene's camera as its tracks move it at the drive's time (sim/tracks.h).
+Camera camera_from_drive(const Drive& drive);
 
 // Looks at the bodies' bounding box from the front-right and above, far enough that the box
 // fits the vertical field of view at the given aspect (width / height).

@@ -374,8 +374,9 @@ void require_index_below(const JsonNode& node, int index, std::size_t count,
 }
 
 // Checks a track target against the scene and returns it in index form: "bodies[i].q_s0[k]",
-// "gravity[k]", "springs[i].target[k]" or "springs[i].stiffness"; "bodies[i].q_s0.<name>" is
-// accepted and rewritten to the index form.
+// "gravity[k]", "springs[i].target[k]", "springs[i].stiffness", "camera.position[k]",
+// "camera.target[k]" or "camera.fov"; "bodies[i].q_s0.<name>" is accepted and rewritten to the
+// index form.
 std::string resolve_track_target(const JsonNode& node, const Scene& scene) {
   const std::string target = read_string(node);
   std::string_view rest = target;
@@ -410,9 +411,20 @@ std::string resolve_track_target(const JsonNode& node, const Scene& scene) {
       return target;
     }
   }
+  rest = target;
+  if (consume(rest, "camera.")) {
+    if (!scene.camera) fail(node, "camera tracks need a 'camera' in the scene");
+    if (rest == "fov") return target;
+    if ((consume(rest, "position") || consume(rest, "target")) && consume_index(rest, k) &&
+        rest.empty()) {
+      require_index_below(node, k, 3, "camera component");
+      return target;
+    }
+  }
   fail(node, "unknown track target '" + target +
                  "' (expected bodies[i].q_s0[k], bodies[i].q_s0.<name>, gravity[k], "
-                 "springs[i].target[k] or springs[i].stiffness)");
+                 "springs[i].target[k], springs[i].stiffness, camera.position[k], "
+                 "camera.target[k] or camera.fov)");
 }
 
 TrackDef parse_track(const JsonNode& node, const Scene& scene) {

@@ -218,6 +218,14 @@ TrackModel build_track(const Scene& scene, int t) {
     if (a < 0 || a >= static_cast<int>(scene.springs.size())) {
       throw Error(scene.file, path, "no such spring '" + def.target + "'");
     }
+  } else if (std::sscanf(s, "camera.position[%d]%c", &k, &tail) == 1 && k >= 0 && k <= 2 &&
+             scene.camera) {
+    track.target = TrackTarget::camera_position;
+  } else if (std::sscanf(s, "camera.target[%d]%c", &k, &tail) == 1 && k >= 0 && k <= 2 &&
+             scene.camera) {
+    track.target = TrackTarget::camera_target;
+  } else if (def.target == "camera.fov" && scene.camera) {
+    track.target = TrackTarget::camera_fov;
   } else {
     throw Error(scene.file, path, "unknown track target '" + def.target + "'");
   }

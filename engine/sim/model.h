@@ -94,7 +94,15 @@ struct SpringModel {
   Real t_begin = 0, t_end = 1e300;
 };
 
-enum class TrackTarget { body_rest_parameter, gravity, spring_target, spring_stiffness };
+enum class TrackTarget {
+  body_rest_parameter,
+  gravity,
+  spring_target,
+  spring_stiffness,
+  camera_position,
+  camera_target,
+  camera_fov
+};
 struct TrackModel {
   TrackTarget target = TrackTarget::gravity;
   int object = 0;  // body or spring index

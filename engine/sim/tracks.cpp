@@ -38,6 +38,12 @@ void evaluate_drive(const Model& model, Real t, Drive& drive) {
     drive.spring_target[s] = model.springs[s].target;
     drive.spring_stiffness[s] = model.springs[s].stiffness;
   }
+  if (model.scene.camera) {
+    drive.camera_position = model.scene.camera->position;
+    drive.camera_target = model.scene.camera->target;
+    drive.camera_up = model.scene.camera->up;
+    drive.camera_fov = model.scene.camera->fov;
+  }
   for (const TrackModel& track : model.tracks) {
     const Real value = evaluate_track(track, t);
     switch (track.target) {
@@ -52,6 +58,15 @@ void evaluate_drive(const Model& model, Real t, Drive& drive) {
         break;
       case TrackTarget::spring_stiffness:
         drive.spring_stiffness[track.object] = value;
+        break;
+      case TrackTarget::camera_position:
+        drive.camera_position[track.index] = value;
+        break;
+      case TrackTarget::camera_target:
+        drive.camera_target[track.index] = value;
+        break;
+      case TrackTarget::camera_fov:
+        drive.camera_fov = value;
         break;
     }
   }

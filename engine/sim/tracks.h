@@ -17,6 +17,9 @@ struct Drive {
   std::vector<VecX> q_s0;  // rest values per body (n_shape each)
   std::vector<Vec3> spring_target;
   std::vector<Real> spring_stiffness;
+  // The scene's camera (renderer only; unused without one).
+  Vec3 camera_position = Vec3::Zero(), camera_target = Vec3::Zero(), camera_up = Vec3::UnitZ();
+  Real camera_fov = 40;
 };
 
 void evaluate_drive(const Model& model, Real t, Drive& drive);
