@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 
@@ -193,6 +194,13 @@ TEST(Render, BadOutputAndOptionsExit2BeforeAnyWork) {
     EXPECT_EQ(r.code, 2) << c.args << "\n" << r.output;
     EXPECT_NE(r.output.find(c.needle), std::string::npos) << c.args << "\n" << r.output;
     EXPECT_FALSE(fs::exists(fresh)) << c.args << " left " << fresh;
+  }
+  if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0) {
+    const Result video =
+        pbm_cli("render " + scene + " --frames 0:1 --video x.mp4 --out " + fresh.string());
+    EXPECT_EQ(video.code, 2) << video.output;
+    EXPECT_NE(video.output.find("ffmpeg"), std::string::npos) << video.output;
+    EXPECT_FALSE(fs::exists(fresh));
   }
   const Result missing = pbm_cli("render /no/such/scene.json --out " + fresh.string());
   EXPECT_EQ(missing.code, 2);
