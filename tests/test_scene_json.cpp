@@ -717,6 +717,15 @@ std::string validate(const json& schema, const json& root, const json& value,
     }
     if (matches == 0 || (one && matches != 1)) return path + ": anyOf/oneOf not satisfied";
   }
+  if (schema.contains("allOf")) {
+    for (const json& part : schema["allOf"]) {
+      const std::string problem = validate(part, root, value, path);
+      if (!problem.empty()) return problem;
+    }
+  }
+  if (schema.contains("not") && validate(schema["not"], root, value, path).empty()) {
+    return path + ": matches 'not'";
+  }
   if (schema.contains("if")) {
     const bool condition = validate(schema["if"], root, value, path).empty();
     const char* branch = condition ? "then" : "else";

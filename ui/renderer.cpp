@@ -242,8 +242,8 @@ struct Renderer::Impl {
     }
   }
 
-  // Obstacles as triangles (planes: 2, boxes: 12) into the scratch mesh; first[k], count[k] per
-  // obstacle. Then the springs' segments as plain positions after them.
+  // Obstacles as triangles (planes: 2, boxes: 12, meshes: theirs) into the scratch mesh; first[k],
+  // count[k] per obstacle. Then the springs' segments as plain positions after them.
   void upload_scene_geometry(const Snapshot& s, std::vector<GLint>& first,
                              std::vector<GLsizei>& count, GLint& springs_first) {
     vertices.clear();
@@ -260,6 +260,16 @@ struct Renderer::Impl {
         const Vec3f corners[4] = {o.point - a - b, o.point + a - b, o.point + a + b,
                                   o.point - a + b};
         for (int k : {0, 1, 2, 0, 2, 3}) vertex(corners[k], o.normal);
+      } else if (o.kind == ObstacleKind::mesh) {
+        for (const std::array<int, 3>& t : o.mesh->triangles) {
+          const Vec3f a = o.mesh->vertices[t[0]].cast<float>();
+          const Vec3f b = o.mesh->vertices[t[1]].cast<float>();
+          const Vec3f c = o.mesh->vertices[t[2]].cast<float>();
+          const Vec3f n = (b - a).cross(c - a).normalized();
+          vertex(a, n);
+          vertex(b, n);
+          vertex(c, n);
+        }
       } else {
         for (int axis = 0; axis < 3; ++axis) {
           for (float sign : {-1.0f, 1.0f}) {
@@ -365,7 +375,7 @@ void Renderer::render(const Snapshot& s, const Camera& camera, const RenderOptio
       perspective_matrix(camera.fov, aspect, 0.05f, 500.0f) * view_matrix(camera);
   const Mat4f light = r.light_view_proj(s);
 
-  // Shadow pass: bodies and boxes cast; planes only receive.
+  // Shadow pass: bodies, boxes and meshes cast; planes only receive.
   gl.Enable(GL_DEPTH_TEST);
   gl.DepthFunc(GL_LESS);
   gl.DepthMask(GL_TRUE);
@@ -384,7 +394,9 @@ void Renderer::render(const Snapshot& s, const Camera& camera, const RenderOptio
     }
     gl.BindVertexArray(r.scratch.vao);
     for (std::size_t k = 0; k < s.obstacles.size(); ++k) {
-      if (s.obstacles[k].kind == ObstacleKind::box) gl.DrawArrays(GL_TRIANGLES, first[k], count[k]);
+      if (s.obstacles[k].kind != ObstacleKind::plane) {
+        gl.DrawArrays(GL_TRIANGLES, first[k], count[k]);
+      }
     }
     gl.Disable(GL_POLYGON_OFFSET_FILL);
   }

@@ -1,14 +1,18 @@
 #include "collide/obstacle.h"
 
+#include "collide/mesh_obstacle.h"
+
 #include <algorithm>
 #include <cmath>
 
 namespace pbm {
 
-Real box_signed_distance(const ObstacleModel& o, const Vec3& x, Vec3& normal) {
+Real solid_signed_distance(const ObstacleModel& o, const Vec3& x, Vec3& normal) {
   switch (o.kind) {
     case ObstacleKind::plane:
       return signed_distance(o, x, normal);
+    case ObstacleKind::mesh:
+      return mesh_signed_distance(*o.mesh, x, normal);
     case ObstacleKind::box: {
       const Vec3 local = o.rotation.transpose() * (x - o.point);
       const Vec3 excess = local.cwiseAbs() - o.half_extents;

@@ -6,8 +6,8 @@
 
 namespace pbm {
 
-// Box obstacles: see signed_distance.
-Real box_signed_distance(const ObstacleModel& box, const Vec3& x, Vec3& normal);
+// Box and mesh obstacles: see signed_distance.
+Real solid_signed_distance(const ObstacleModel& box, const Vec3& x, Vec3& normal);
 
 // Signed distance from x to the obstacle's surface (> 0 outside) and the outward unit normal of
 // the collision plane (the tangent plane at the closest surface point, footnote 4 of sec. 5.2.1).
@@ -18,7 +18,7 @@ inline Real signed_distance(const ObstacleModel& obstacle, const Vec3& x, Vec3& 
     normal = obstacle.normal;
     return obstacle.normal.dot(x - obstacle.point);
   }
-  return box_signed_distance(obstacle, x, normal);
+  return solid_signed_distance(obstacle, x, normal);
 }
 
 }  // namespace pbm

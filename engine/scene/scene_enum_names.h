@@ -27,8 +27,8 @@ inline constexpr NameTable<IntegratorKind, 3> kIntegratorKindNames{
     {{"euler", IntegratorKind::euler},
      {"rk4", IntegratorKind::rk4},
      {"rk45", IntegratorKind::rk45}}};
-inline constexpr NameTable<ObstacleKind, 2> kObstacleKindNames{
-    {{"plane", ObstacleKind::plane}, {"box", ObstacleKind::box}}};
+inline constexpr NameTable<ObstacleKind, 3> kObstacleKindNames{
+    {{"plane", ObstacleKind::plane}, {"box", ObstacleKind::box}, {"mesh", ObstacleKind::mesh}}};
 inline constexpr NameTable<ForceFieldKind, 2> kForceFieldKindNames{
     {{"acceleration", ForceFieldKind::acceleration},
      {"force_per_node", ForceFieldKind::force_per_node}}};

@@ -3,6 +3,7 @@
 // bad value; parse_scene only returns a Scene once every part has been read.
 #include "scene/scene_json.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -27,8 +28,6 @@ constexpr Real kUnitLengthSlack = 1e-14;
 constexpr Real kMinimumDirectionLength = 1e-12;
 constexpr std::int64_t kMaxNodesPerBody = 1000000;
 constexpr int kMaxRetriesLimit = 20;
-constexpr std::array<std::string_view, 3> kPlaneOnlyKeys{"point", "normal", "size"};
-constexpr std::array<std::string_view, 3> kBoxOnlyKeys{"center", "half_extents", "orientation"};
 
 // "1 body", "2 bodies".
 std::string count_of(std::size_t n, const std::string& singular, const std::string& plural) {
@@ -233,20 +232,28 @@ int parse_body_reference(const JsonNode& node, const std::vector<BodyDef>& bodie
 
 ObstacleDef parse_obstacle(const JsonNode& node, std::size_t index) {
   require_object(node, {"name", "kind", "point", "normal", "size", "center", "half_extents",
-                        "orientation", "elasticity", "friction"});
+                        "orientation", "file", "position", "scale", "elasticity", "friction"});
   ObstacleDef obstacle;
   obstacle.name = "obstacle" + std::to_string(index);
   if (auto name = find_child(node, "name")) obstacle.name = read_string(*name);
   if (auto kind = find_child(node, "kind")) obstacle.kind = read_enum(*kind, kObstacleKindNames);
-  const bool plane = obstacle.kind == ObstacleKind::plane;
-  // Keys of the other kind would be silently ignored, which hides typos like a plane's "center".
-  for (const std::string_view key : plane ? kBoxOnlyKeys : kPlaneOnlyKeys) {
+  // Keys of another kind would be silently ignored, which hides typos like a plane's "center".
+  const std::string kind_name(enum_name(obstacle.kind, kObstacleKindNames));
+  const std::vector<std::string_view> own =
+      obstacle.kind == ObstacleKind::plane
+          ? std::vector<std::string_view>{"point", "normal", "size"}
+      : obstacle.kind == ObstacleKind::box
+          ? std::vector<std::string_view>{"center", "half_extents", "orientation"}
+          : std::vector<std::string_view>{"file", "position", "orientation", "scale"};
+  for (const std::string_view key : {"point", "normal", "size", "center", "half_extents",
+                                     "orientation", "file", "position", "scale"}) {
+    if (std::find(own.begin(), own.end(), key) != own.end()) continue;
     if (auto misplaced = find_child(node, key)) {
-      fail(*misplaced, "key '" + std::string(key) + "' is not valid for a " +
-                           (plane ? "plane" : "box") + " obstacle");
+      fail(*misplaced,
+           "key '" + std::string(key) + "' is not valid for a " + kind_name + " obstacle");
     }
   }
-  if (plane) {
+  if (obstacle.kind == ObstacleKind::plane) {
     if (auto point = find_child(node, "point")) obstacle.point = read_vec3(*point);
     if (auto normal = find_child(node, "normal")) {
       obstacle.normal = normalized_direction(*normal, read_vec3(*normal), "vector");
@@ -255,7 +262,7 @@ ObstacleDef parse_obstacle(const JsonNode& node, std::size_t index) {
       obstacle.size = read_vec2(*size);
       for (int k = 0; k < 2; ++k) require_positive(element(*size, k), obstacle.size[k]);
     }
-  } else {
+  } else if (obstacle.kind == ObstacleKind::box) {
     if (auto center = find_child(node, "center")) obstacle.point = read_vec3(*center);
     if (auto half_extents = find_child(node, "half_extents")) {
       obstacle.half_extents = read_vec3(*half_extents);
@@ -263,6 +270,16 @@ ObstacleDef parse_obstacle(const JsonNode& node, std::size_t index) {
         require_positive(element(*half_extents, k), obstacle.half_extents[k]);
       }
     }
+  } else {
+    const JsonNode file = require_child(node, "file");
+    obstacle.file = read_string(file);
+    if (obstacle.file.empty()) fail(file, "must name a mesh file");
+    if (auto position = find_child(node, "position")) obstacle.point = read_vec3(*position);
+    if (auto scale = find_child(node, "scale")) {
+      obstacle.scale = require_positive(*scale, read_real(*scale));
+    }
+  }
+  if (obstacle.kind != ObstacleKind::plane) {
     if (auto orientation = find_child(node, "orientation")) {
       obstacle.orientation =
           normalized_direction(*orientation, read_vec4(*orientation), "quaternion");

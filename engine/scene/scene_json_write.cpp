@@ -83,10 +83,15 @@ Json write_obstacle(const ObstacleDef& obstacle) {
     j["point"] = to_array(obstacle.point);
     j["normal"] = to_array(obstacle.normal);
     j["size"] = to_array(obstacle.size);
-  } else {
+  } else if (obstacle.kind == ObstacleKind::box) {
     j["center"] = to_array(obstacle.point);
     j["half_extents"] = to_array(obstacle.half_extents);
     j["orientation"] = to_array(obstacle.orientation);
+  } else {
+    j["file"] = obstacle.file;
+    j["position"] = to_array(obstacle.point);
+    j["orientation"] = to_array(obstacle.orientation);
+    j["scale"] = obstacle.scale;
   }
   j["elasticity"] = obstacle.elasticity;
   j["friction"] = obstacle.friction;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <numbers>
 
@@ -176,7 +177,8 @@ BodyModel build_body(const Scene& scene, int b) {
   return body;
 }
 
-ObstacleModel build_obstacle(const ObstacleDef& def) {
+ObstacleModel build_obstacle(const Scene& scene, std::size_t index) {
+  const ObstacleDef& def = scene.obstacles[index];
   ObstacleModel o;
   o.name = def.name;
   o.kind = def.kind;
@@ -187,6 +189,18 @@ ObstacleModel build_obstacle(const ObstacleDef& def) {
   o.size = def.size;
   o.elasticity = def.elasticity;
   o.friction = def.friction;
+  if (def.kind == ObstacleKind::mesh) {
+    std::filesystem::path path = def.file;
+    if (path.is_relative() && !scene.file.empty()) {
+      path = std::filesystem::path(scene.file).parent_path() / path;
+    }
+    try {
+      o.mesh = load_mesh_obstacle(path.string(), o.rotation, def.point, def.scale);
+    } catch (const std::exception& e) {
+      throw Error(scene.file, "obstacles[" + std::to_string(index) + "].file",
+                  "cannot use mesh '" + path.string() + "': " + e.what());
+    }
+  }
   return o;
 }
 
@@ -253,7 +267,9 @@ Model build_model(const Scene& scene) {
     model.n_v += body.v_size;
     model.bodies.push_back(std::move(body));
   }
-  for (const ObstacleDef& o : scene.obstacles) model.obstacles.push_back(build_obstacle(o));
+  for (std::size_t o = 0; o < scene.obstacles.size(); ++o) {
+    model.obstacles.push_back(build_obstacle(scene, o));
+  }
   model.force_fields = scene.force_fields;
   for (int s = 0; s < static_cast<int>(scene.springs.size()); ++s) {
     const SpringDef& def = scene.springs[s];

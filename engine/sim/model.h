@@ -3,9 +3,11 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "collide/mesh_obstacle.h"
 #include "core/types.h"
 #include "deform/membrane_stiffness.h"
 #include "deform/superquadric.h"
@@ -81,8 +83,9 @@ struct ObstacleModel {
   Mat3 rotation = Mat3::Identity();  // box axes in world
   Vec3 half_extents{1, 1, 1};
   Vec2 size{20, 20};
-  Real elasticity = 0;  // a (5.11)
-  Real friction = 0;    // beta_f (5.12)
+  Real elasticity = 0;                       // a (5.11)
+  Real friction = 0;                         // beta_f (5.12)
+  std::shared_ptr<const MeshObstacle> mesh;  // mesh obstacles: placed triangles and their field
 };
 
 struct SpringModel {

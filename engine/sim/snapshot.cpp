@@ -70,6 +70,7 @@ Snapshot make_snapshot(const Model& model, const State& state, const Inputs& inp
     out.size = o.size.cast<float>();
     out.rotation = o.rotation.cast<float>();
     out.half_extents = o.half_extents.cast<float>();
+    out.mesh = o.mesh;
     snap.obstacles.push_back(out);
   }
   for (std::size_t s = 0; s < model.springs.size(); ++s) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,7 @@ struct ObstacleSnapshot {
   Eigen::Vector2f size{20, 20};                            // plane: drawn extent
   Eigen::Matrix3f rotation = Eigen::Matrix3f::Identity();  // box axes
   Vec3f half_extents{1, 1, 1};
+  std::shared_ptr<const MeshObstacle> mesh;  // mesh obstacles: world triangles
 };
 
 struct SpringSnapshot {
