@@ -8,8 +8,7 @@
 
 #include "camera.h"
 #include "core/error.h"
-#include "osmesa_context.h"
-#include "renderer.h"
+#include "headless_renderer.h"
 #include "scene/scene_json.h"
 #include "sim/model.h"
 #include "sim/snapshot.h"
@@ -39,15 +38,9 @@ int run_bench_render(const std::string& scene_path, int frames) {
     spdlog::error("{}", e.what());
     return 2;
   }
-  std::unique_ptr<OsmesaContext> context;
-  std::unique_ptr<Renderer> renderer;
-  try {
-    context = std::make_unique<OsmesaContext>();
-    renderer = std::make_unique<Renderer>(context->functions());
-  } catch (const std::exception& e) {
-    spdlog::error("headless OpenGL: {}", e.what());
-    return 1;
-  }
+  const std::unique_ptr<HeadlessRenderer> headless = open_headless_renderer();
+  if (!headless) return 1;
+  Renderer* renderer = &headless->renderer;
   RenderOptions options;  // 1280x720, 4 samples, shadows
   std::printf("bench render: '%s' at %dx%d, %d frames each, median ms per frame\n",
               base.name.c_str(), options.width, options.height, frames);

@@ -11,10 +11,9 @@
 
 #include "camera.h"
 #include "core/error.h"
-#include "osmesa_context.h"
+#include "headless_renderer.h"
 #include "png_io.h"
 #include "progress_bar.h"
-#include "renderer.h"
 #include "scene/scene_json.h"
 #include "sim/model.h"
 #include "sim/snapshot.h"
@@ -126,15 +125,9 @@ int run_render(const RenderCommandOptions& o) {
     return 2;
   }
 
-  std::unique_ptr<OsmesaContext> context;
-  std::unique_ptr<Renderer> renderer;
-  try {
-    context = std::make_unique<OsmesaContext>();
-    renderer = std::make_unique<Renderer>(context->functions());
-  } catch (const std::exception& e) {
-    spdlog::error("headless OpenGL: {}", e.what());
-    return 1;
-  }
+  const std::unique_ptr<HeadlessRenderer> headless = open_headless_renderer();
+  if (!headless) return 1;
+  Renderer* renderer = &headless->renderer;
 
   const Inputs inputs;
   Workspace ws;

@@ -11,14 +11,13 @@
 #include <sstream>
 #include <string>
 
+#include "cli_runner.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int code = -1;
-  std::string output;
-};
+using Result = pbm::test::CliResult;
 
 fs::path temp_dir() {
   const fs::path dir = fs::temp_directory_path() / ("pbm_cli_test_" + std::to_string(getpid()));
@@ -27,14 +26,7 @@ fs::path temp_dir() {
 }
 
 Result pbm(const std::string& args) {
-  const std::string cmd = std::string(PBM_BINARY_DIR) + "/app/pbm " + args + " 2>&1";
-  Result r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  char buf[4096];
-  while (std::fgets(buf, sizeof buf, pipe)) r.output += buf;
-  const int status = pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return pbm::test::run_pbm(args);
 }
 
 std::string read(const fs::path& p) {

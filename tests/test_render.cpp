@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <string>
 
+#include "cli_runner.h"
 #include "core/error.h"
 #include "osmesa_context.h"
 #include "png_io.h"
@@ -25,20 +26,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int code = -1;
-  std::string output;
-};
+using Result = test::CliResult;
 
 Result pbm_cli(const std::string& args) {
-  const std::string cmd = std::string(PBM_BINARY_DIR) + "/app/pbm " + args + " 2>&1";
-  Result r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  char buf[4096];
-  while (std::fgets(buf, sizeof buf, pipe)) r.output += buf;
-  const int status = pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return test::run_pbm(args);
 }
 
 fs::path temp_dir(const std::string& name) {
