@@ -1,7 +1,7 @@
 #version 330 core
 // Key light with a shadow map, a cool fill light and sky ambient, Blinn-Phong with the
 // material's roughness setting the highlight, Reinhard tone mapping and display gamma. Planes
-// (u_grid = 1) draw a 1 m grid in their own axes.
+// use ground.frag, the same lighting with the normal's terms precomputed.
 in vec3 v_position;
 in vec3 v_normal;
 in vec4 v_light_clip;
@@ -12,10 +12,6 @@ uniform vec3 u_key_direction;   // towards the key light
 uniform vec3 u_fill_direction;  // towards the fill light
 uniform sampler2DShadow u_shadow_map;
 uniform int u_shadows;
-uniform int u_grid;
-uniform vec3 u_grid_origin;
-uniform vec3 u_grid_u;
-uniform vec3 u_grid_v;
 out vec4 frag_color;
 
 float key_visibility(vec3 n) {
@@ -38,14 +34,6 @@ void main() {
   vec3 to_camera = normalize(u_camera - v_position);
   if (dot(n, to_camera) < 0.0) n = -n;
   vec3 albedo = u_base_color;
-  if (u_grid == 1) {
-    vec3 d = v_position - u_grid_origin;
-    vec2 c = vec2(dot(d, u_grid_u), dot(d, u_grid_v));
-    vec2 w = fwidth(c);
-    vec2 line = abs(fract(c - 0.5) - 0.5) / max(w, vec2(1e-6));
-    float on_line = 1.0 - clamp(min(line.x, line.y), 0.0, 1.0);
-    albedo = mix(albedo, albedo * 0.55, on_line);
-  }
   float shininess = mix(256.0, 4.0, clamp(u_roughness, 0.0, 1.0));
   float specular_strength = mix(0.6, 0.05, clamp(u_roughness, 0.0, 1.0));
   float key = max(dot(n, u_key_direction), 0.0) * key_visibility(n);

@@ -76,7 +76,7 @@ Vec3f perpendicular(const Vec3f& n) {
 
 struct Renderer::Impl {
   const gl::Functions& gl;
-  GLuint background = 0, shadow = 0, surface = 0, line = 0;
+  GLuint background = 0, shadow = 0, surface = 0, ground = 0, line = 0;
   GLuint empty_vao = 0;
   std::vector<Mesh> bodies;
   Mesh scratch;  // obstacles and springs, rebuilt each frame
@@ -339,6 +339,7 @@ Renderer::Renderer(const gl::Functions& gl) : impl_(std::make_unique<Impl>(gl)) 
   r.background = link(gl, "background");
   r.shadow = link(gl, "shadow");
   r.surface = link(gl, "surface");
+  r.ground = link(gl, "ground");
   r.line = link(gl, "line");
   gl.GenVertexArrays(1, &r.empty_vao);
   r.create_mesh(r.scratch);
@@ -353,7 +354,7 @@ Renderer::~Renderer() {
   r.release_targets();
   if (r.shadow_fbo) gl.DeleteFramebuffers(1, &r.shadow_fbo);
   if (r.shadow_texture) gl.DeleteTextures(1, &r.shadow_texture);
-  for (GLuint p : {r.background, r.shadow, r.surface, r.line}) gl.DeleteProgram(p);
+  for (GLuint p : {r.background, r.shadow, r.surface, r.ground, r.line}) gl.DeleteProgram(p);
 }
 
 void Renderer::render(const Snapshot& s, const Camera& camera, const RenderOptions& o) {
@@ -416,7 +417,6 @@ void Renderer::render(const Snapshot& s, const Camera& camera, const RenderOptio
   gl.BindTexture(GL_TEXTURE_2D, r.shadow_texture);
   r.set(r.surface, "u_shadow_map", 0);
   // Bodies first: the planes behind them then fail the depth test before shading.
-  r.set(r.surface, "u_grid", 0);
   if (o.wireframe) {
     gl.Enable(GL_POLYGON_OFFSET_FILL);
     gl.PolygonOffset(1.0f, 1.0f);
@@ -429,22 +429,40 @@ void Renderer::render(const Snapshot& s, const Camera& camera, const RenderOptio
   }
   gl.Disable(GL_POLYGON_OFFSET_FILL);
 
+  // Boxes and meshes with the surface shader.
   gl.BindVertexArray(r.scratch.vao);
+  r.set(r.surface, "u_base_color", Vec3f(0.45f, 0.52f, 0.62f));
+  r.set(r.surface, "u_roughness", 0.6f);
+  for (std::size_t k = 0; k < s.obstacles.size(); ++k) {
+    if (s.obstacles[k].kind != ObstacleKind::plane) gl.DrawArrays(GL_TRIANGLES, first[k], count[k]);
+  }
+  // Planes: their lighting is constant (the normal is), so it is computed here and the
+  // fragment shader only draws the grid and reads the shadow (planes cover most of the image).
+  gl.UseProgram(r.ground);
+  r.set(r.ground, "u_view_proj", view_proj);
+  r.set(r.ground, "u_light_view_proj", light);
+  r.set(r.ground, "u_shadows", o.shadows ? 1 : 0);
+  r.set(r.ground, "u_shadow_map", 0);
+  const Vec3f albedo(0.62f, 0.60f, 0.56f);
+  r.set(r.ground, "u_base_color", albedo);
   for (std::size_t k = 0; k < s.obstacles.size(); ++k) {
     const ObstacleSnapshot& ob = s.obstacles[k];
-    const bool plane = ob.kind == ObstacleKind::plane;
-    r.set(r.surface, "u_grid", plane ? 1 : 0);
-    if (plane) {
-      const Vec3f u = perpendicular(ob.normal);
-      r.set(r.surface, "u_grid_origin", ob.point);
-      r.set(r.surface, "u_grid_u", u);
-      r.set(r.surface, "u_grid_v", Vec3f(ob.normal.cross(u)));
-      r.set(r.surface, "u_base_color", Vec3f(0.62f, 0.60f, 0.56f));
-      r.set(r.surface, "u_roughness", 0.9f);
-    } else {
-      r.set(r.surface, "u_base_color", Vec3f(0.45f, 0.52f, 0.62f));
-      r.set(r.surface, "u_roughness", 0.6f);
-    }
+    if (ob.kind != ObstacleKind::plane) continue;
+    // The camera sees a plane from its normal's side or through it; light it from that side.
+    const Vec3f n =
+        (camera.position - ob.point).dot(ob.normal) >= 0 ? ob.normal : Vec3f(-ob.normal);
+    const float key = std::max(n.dot(kKeyDirection), 0.0f);
+    const float fill = std::max(n.dot(kFillDirection), 0.0f);
+    const float sky = 0.5f + 0.5f * n.z();
+    const Vec3f shade = Vec3f(0.55f, 0.65f, 0.8f) * 0.45f * fill +
+                        Vec3f(0.10f, 0.09f, 0.08f) * (1 - sky) + Vec3f(0.22f, 0.25f, 0.30f) * sky;
+    r.set(r.ground, "u_lit", Vec3f(Vec3f(1.0f, 0.96f, 0.9f) * 2.2f * key));
+    r.set(r.ground, "u_shade", shade);
+    r.set(r.ground, "u_bias", 0.002f + 0.006f * (1.0f - std::abs(key)));
+    const Vec3f u = perpendicular(ob.normal);
+    r.set(r.ground, "u_grid_origin", ob.point);
+    r.set(r.ground, "u_grid_u", u);
+    r.set(r.ground, "u_grid_v", Vec3f(ob.normal.cross(u)));
     gl.DrawArrays(GL_TRIANGLES, first[k], count[k]);
   }
   // The background gradient last, at the far plane with LEQUAL: only pixels nothing covered
