@@ -86,6 +86,12 @@ struct Renderer::Impl {
   int width = 0, height = 0, samples_in_use = 0;
   RenderTimes times;
   std::vector<float> vertices;  // scratch for uploads
+  // Per plane of the last upload (in obstacle order): its grid lines and its shadow patch.
+  struct PlaneParts {
+    GLint grid_first = 0, patch_first = 0;
+    GLsizei grid_count = 0, patch_count = 0;
+  };
+  std::vector<PlaneParts> planes;
 
   explicit Impl(const gl::Functions& functions) : gl(functions) {}
 
@@ -252,15 +258,49 @@ struct Renderer::Impl {
     };
     first.clear();
     count.clear();
+    planes.clear();
     for (const ObstacleSnapshot& o : s.obstacles) {
-      first.push_back(static_cast<GLint>(vertices.size() / 6));
       if (o.kind == ObstacleKind::plane) {
         const Vec3f u = perpendicular(o.normal), v = o.normal.cross(u);
-        const Vec3f a = 0.5f * o.size.x() * u, b = 0.5f * o.size.y() * v;
-        const Vec3f corners[4] = {o.point - a - b, o.point + a - b, o.point + a + b,
-                                  o.point - a + b};
-        for (int k : {0, 1, 2, 0, 2, 3}) vertex(corners[k], o.normal);
-      } else if (o.kind == ObstacleKind::mesh) {
+        auto rectangle = [&](float u0, float u1, float v0, float v1) {
+          const Vec3f corners[4] = {o.point + u0 * u + v0 * v, o.point + u1 * u + v0 * v,
+                                    o.point + u1 * u + v1 * v, o.point + u0 * u + v1 * v};
+          for (int k : {0, 1, 2, 0, 2, 3}) vertex(corners[k], o.normal);
+        };
+        const float a = 0.5f * o.size.x(), b = 0.5f * o.size.y();
+        rectangle(-a, a, -b, b);
+        // The 1 m grid as lines, at whole plane coordinates.
+        PlaneParts parts;
+        parts.grid_first = static_cast<GLint>(vertices.size() / 6);
+        for (float c = std::ceil(-a); c <= a; c += 1.0f) {
+          vertex(o.point + c * u - b * v, o.normal);
+          vertex(o.point + c * u + b * v, o.normal);
+        }
+        for (float c = std::ceil(-b); c <= b; c += 1.0f) {
+          vertex(o.point - a * u + c * v, o.normal);
+          vertex(o.point + a * u + c * v, o.normal);
+        }
+        parts.grid_count = static_cast<GLsizei>(vertices.size() / 6) - parts.grid_first;
+        // The patch where shadows can fall, clipped to the drawn plane.
+        Vec3f centre;
+        float reach = 0;
+        shadow_region(s, centre, reach);
+        const float slant = std::max(std::abs(o.normal.dot(kKeyDirection)), 0.25f);
+        const float half = reach / slant;
+        const Vec3f d = centre - o.point;
+        const float cu = d.dot(u), cv = d.dot(v);
+        const float u0 = std::max(-a, cu - half), u1 = std::min(a, cu + half);
+        const float v0 = std::max(-b, cv - half), v1 = std::min(b, cv + half);
+        parts.patch_first = static_cast<GLint>(vertices.size() / 6);
+        if (u0 < u1 && v0 < v1) rectangle(u0, u1, v0, v1);
+        parts.patch_count = static_cast<GLsizei>(vertices.size() / 6) - parts.patch_first;
+        planes.push_back(parts);
+        first.push_back(parts.grid_first - 6);
+        count.push_back(6);
+        continue;
+      }
+      first.push_back(static_cast<GLint>(vertices.size() / 6));
+      if (o.kind == ObstacleKind::mesh) {
         for (const std::array<int, 3>& t : o.mesh->triangles) {
           const Vec3f a = o.mesh->vertices[t[0]].cast<float>();
           const Vec3f b = o.mesh->vertices[t[1]].cast<float>();
@@ -296,12 +336,18 @@ struct Renderer::Impl {
     if (!vertices.empty()) upload_vertices(scratch, vertices);
   }
 
-  // An orthographic key-light frustum around the bodies and the ground near them.
-  Mat4f light_view_proj(const Snapshot& s) const {
+  // Where shadows can fall: a sphere around the bodies (centre, reach) that the key light's
+  // orthographic frustum covers.
+  static void shadow_region(const Snapshot& s, Vec3f& centre, float& reach) {
     const Vec3f lo = s.bodies_min(), hi = s.bodies_max();
-    const Vec3f centre = s.bodies.empty() ? Vec3f::Zero() : Vec3f(0.5f * (lo + hi));
+    centre = s.bodies.empty() ? Vec3f::Zero() : Vec3f(0.5f * (lo + hi));
     const float radius = s.bodies.empty() ? 10.0f : std::max(0.5f * (hi - lo).norm(), 0.5f);
-    const float reach = 3.0f * radius;
+    reach = 3.0f * radius;
+  }
+  Mat4f light_view_proj(const Snapshot& s) const {
+    Vec3f centre;
+    float reach = 0;
+    shadow_region(s, centre, reach);
     Camera light;
     light.target = centre;
     light.position = centre + 4.0f * reach * kKeyDirection;
@@ -436,18 +482,17 @@ void Renderer::render(const Snapshot& s, const Camera& camera, const RenderOptio
   for (std::size_t k = 0; k < s.obstacles.size(); ++k) {
     if (s.obstacles[k].kind != ObstacleKind::plane) gl.DrawArrays(GL_TRIANGLES, first[k], count[k]);
   }
-  // Planes: their lighting is constant (the normal is), so it is computed here and the
-  // fragment shader only draws the grid and reads the shadow (planes cover most of the image).
-  gl.UseProgram(r.ground);
-  r.set(r.ground, "u_view_proj", view_proj);
-  r.set(r.ground, "u_light_view_proj", light);
-  r.set(r.ground, "u_shadows", o.shadows ? 1 : 0);
-  r.set(r.ground, "u_shadow_map", 0);
+  // Planes cover most of the image, and on a software rasterizer their fill is the cost. Their
+  // lighting is constant (the normal is), so most of each is one flat colour (tone mapped here,
+  // as the shaders do), its grid lines, and only the patch where shadows can fall is shaded per
+  // pixel by ground.frag (same depth, LEQUAL).
+  auto tone_map = [](const Vec3f& c) { return Vec3f((c.array() / (1.0f + c.array())).sqrt()); };
   const Vec3f albedo(0.62f, 0.60f, 0.56f);
-  r.set(r.ground, "u_base_color", albedo);
+  std::size_t plane = 0;
   for (std::size_t k = 0; k < s.obstacles.size(); ++k) {
     const ObstacleSnapshot& ob = s.obstacles[k];
     if (ob.kind != ObstacleKind::plane) continue;
+    const Impl::PlaneParts& parts = r.planes[plane++];
     // The camera sees a plane from its normal's side or through it; light it from that side.
     const Vec3f n =
         (camera.position - ob.point).dot(ob.normal) >= 0 ? ob.normal : Vec3f(-ob.normal);
@@ -456,14 +501,37 @@ void Renderer::render(const Snapshot& s, const Camera& camera, const RenderOptio
     const float sky = 0.5f + 0.5f * n.z();
     const Vec3f shade = Vec3f(0.55f, 0.65f, 0.8f) * 0.45f * fill +
                         Vec3f(0.10f, 0.09f, 0.08f) * (1 - sky) + Vec3f(0.22f, 0.25f, 0.30f) * sky;
-    r.set(r.ground, "u_lit", Vec3f(Vec3f(1.0f, 0.96f, 0.9f) * 2.2f * key));
-    r.set(r.ground, "u_shade", shade);
-    r.set(r.ground, "u_bias", 0.002f + 0.006f * (1.0f - std::abs(key)));
-    const Vec3f u = perpendicular(ob.normal);
-    r.set(r.ground, "u_grid_origin", ob.point);
-    r.set(r.ground, "u_grid_u", u);
-    r.set(r.ground, "u_grid_v", Vec3f(ob.normal.cross(u)));
+    const Vec3f lit = Vec3f(1.0f, 0.96f, 0.9f) * 2.2f * key;
+    const Vec3f light_sum = shade + lit;
+    gl.BindVertexArray(r.scratch.vao);
+    gl.UseProgram(r.line);
+    r.set(r.line, "u_view_proj", view_proj);
+    r.set(r.line, "u_point_size", 1.0f);
+    r.set(r.line, "u_color", tone_map(albedo.cwiseProduct(light_sum)));
+    gl.Enable(GL_POLYGON_OFFSET_FILL);
+    gl.PolygonOffset(1.0f, 1.0f);
     gl.DrawArrays(GL_TRIANGLES, first[k], count[k]);
+    gl.DepthFunc(GL_LEQUAL);
+    r.set(r.line, "u_color", tone_map(Vec3f(0.55f * albedo.cwiseProduct(light_sum))));
+    gl.DrawArrays(GL_LINES, parts.grid_first, parts.grid_count);
+    if (o.shadows && parts.patch_count > 0) {
+      gl.UseProgram(r.ground);
+      r.set(r.ground, "u_view_proj", view_proj);
+      r.set(r.ground, "u_light_view_proj", light);
+      r.set(r.ground, "u_shadows", 1);
+      r.set(r.ground, "u_shadow_map", 0);
+      r.set(r.ground, "u_base_color", albedo);
+      r.set(r.ground, "u_lit", lit);
+      r.set(r.ground, "u_shade", shade);
+      r.set(r.ground, "u_bias", 0.002f + 0.006f * (1.0f - key));
+      const Vec3f u = perpendicular(ob.normal);
+      r.set(r.ground, "u_grid_origin", ob.point);
+      r.set(r.ground, "u_grid_u", u);
+      r.set(r.ground, "u_grid_v", Vec3f(ob.normal.cross(u)));
+      gl.DrawArrays(GL_TRIANGLES, parts.patch_first, parts.patch_count);
+    }
+    gl.DepthFunc(GL_LESS);
+    gl.Disable(GL_POLYGON_OFFSET_FILL);
   }
   // The background gradient last, at the far plane with LEQUAL: only pixels nothing covered
   // run its shader (on a software rasterizer the fill is the cost).
