@@ -137,6 +137,32 @@ TEST(Contact, ObstaclePushIsTheGradientOfItsEnergy) {
   }
 }
 
+// The obstacle's constants at their extremes: a = 0 (no push, the projection alone holds the
+// nodes), a = 1e7 (a spring far stiffer than the step resolves, clamped), beta_f in {0, 1}. No
+// node ends a step inside, nothing diverges, the kinetic energy never exceeds the fall's.
+TEST(Contact, ExtremeElasticityAndFrictionStayOutsideAndBounded) {
+  for (const Real a : {0.0, 1e7}) {
+    for (const Real beta : {0.0, 1.0}) {
+      Scene scene = jello();
+      for (ObstacleDef& o : scene.obstacles) {
+        o.elasticity = a;
+        o.friction = beta;
+      }
+      test::Simulation sim(scene);
+      Real lowest = 1e300, fastest = 0;
+      for (int f = 0; f < 150; ++f) {
+        const FrameResult r = advance_frame(sim.model, sim.state, sim.ws);
+        ASSERT_TRUE(r.ok) << "a " << a << " beta " << beta << ": " << r.message;
+        lowest = std::min(lowest, r.stats.min_distance);
+        fastest = std::max(fastest, r.stats.kinetic);
+      }
+      EXPECT_GE(lowest, 0.0) << "a " << a << " beta " << beta;
+      // Falling 2.8 m (centre 4 m to 1.2 m above the slope) at most: m g h = 2064 * 9.81 * 2.8.
+      EXPECT_LT(fastest, 2064 * 9.81 * 2.8) << "a " << a << " beta " << beta;
+    }
+  }
+}
+
 // Rigid and global bodies resolve contact through their generalized coordinates (impulses mapped
 // by L^T and a translation of c): the same guarantee, and they come to rest on the ground.
 class LevelContact : public testing::TestWithParam<DeformLevel> {};
