@@ -14,6 +14,7 @@ namespace pbm::gl {
   X(PFNGLGETINTEGERVPROC, GetIntegerv)                                       \
   X(PFNGLGETERRORPROC, GetError)                                             \
   X(PFNGLVIEWPORTPROC, Viewport)                                             \
+  X(PFNGLSCISSORPROC, Scissor)                                               \
   X(PFNGLCLEARPROC, Clear)                                                   \
   X(PFNGLCLEARCOLORPROC, ClearColor)                                         \
   X(PFNGLENABLEPROC, Enable)                                                 \

@@ -76,8 +76,7 @@ Vec3f perpendicular(const Vec3f& n) {
 
 struct Renderer::Impl {
   const gl::Functions& gl;
-  GLuint background = 0, shadow = 0, surface = 0, ground = 0, line = 0;
-  GLuint empty_vao = 0;
+  GLuint shadow = 0, surface = 0, ground = 0, line = 0;
   std::vector<Mesh> bodies;
   Mesh scratch;  // obstacles and springs, rebuilt each frame
   GLuint shadow_fbo = 0, shadow_texture = 0;
@@ -281,16 +280,29 @@ struct Renderer::Impl {
           vertex(o.point + a * u + c * v, o.normal);
         }
         parts.grid_count = static_cast<GLsizei>(vertices.size() / 6) - parts.grid_first;
-        // The patch where shadows can fall, clipped to the drawn plane.
-        Vec3f centre;
-        float reach = 0;
-        shadow_region(s, centre, reach);
-        const float slant = std::max(std::abs(o.normal.dot(kKeyDirection)), 0.25f);
-        const float half = reach / slant;
-        const Vec3f d = centre - o.point;
-        const float cu = d.dot(u), cv = d.dot(v);
-        const float u0 = std::max(-a, cu - half), u1 = std::min(a, cu + half);
-        const float v0 = std::max(-b, cv - half), v1 = std::min(b, cv + half);
+        // The patch where shadows can fall: the bodies' bounding box cast along the key light
+        // onto the plane, with a margin for the filter, clipped to the drawn plane.
+        float u0 = a, u1 = -a, v0 = b, v1 = -b;
+        const float along = kKeyDirection.dot(o.normal);
+        if (!s.bodies.empty() && along > 0.05f) {
+          const Vec3f lo = s.bodies_min(), hi = s.bodies_max();
+          for (int corner = 0; corner < 8; ++corner) {
+            const Vec3f x((corner & 1) ? hi.x() : lo.x(), (corner & 2) ? hi.y() : lo.y(),
+                          (corner & 4) ? hi.z() : lo.z());
+            // Corners below the plane project too: the box is loose, the body inside may not be.
+            const float above = (x - o.point).dot(o.normal);
+            const Vec3f d = x - above / along * kKeyDirection - o.point;
+            u0 = std::min(u0, d.dot(u));
+            u1 = std::max(u1, d.dot(u));
+            v0 = std::min(v0, d.dot(v));
+            v1 = std::max(v1, d.dot(v));
+          }
+          const float margin = 0.5f;  // the filter's blur and the box's looseness
+          u0 = std::max(-a, u0 - margin);
+          u1 = std::min(a, u1 + margin);
+          v0 = std::max(-b, v0 - margin);
+          v1 = std::min(b, v1 + margin);
+        }
         parts.patch_first = static_cast<GLint>(vertices.size() / 6);
         if (u0 < u1 && v0 < v1) rectangle(u0, u1, v0, v1);
         parts.patch_count = static_cast<GLsizei>(vertices.size() / 6) - parts.patch_first;
@@ -382,12 +394,10 @@ struct Renderer::Impl {
 
 Renderer::Renderer(const gl::Functions& gl) : impl_(std::make_unique<Impl>(gl)) {
   Impl& r = *impl_;
-  r.background = link(gl, "background");
   r.shadow = link(gl, "shadow");
   r.surface = link(gl, "surface");
   r.ground = link(gl, "ground");
   r.line = link(gl, "line");
-  gl.GenVertexArrays(1, &r.empty_vao);
   r.create_mesh(r.scratch);
 }
 
@@ -396,11 +406,10 @@ Renderer::~Renderer() {
   const gl::Functions& gl = r.gl;
   for (Mesh& m : r.bodies) r.delete_mesh(m);
   r.delete_mesh(r.scratch);
-  gl.DeleteVertexArrays(1, &r.empty_vao);
   r.release_targets();
   if (r.shadow_fbo) gl.DeleteFramebuffers(1, &r.shadow_fbo);
   if (r.shadow_texture) gl.DeleteTextures(1, &r.shadow_texture);
-  for (GLuint p : {r.background, r.shadow, r.surface, r.ground, r.line}) gl.DeleteProgram(p);
+  for (GLuint p : {r.shadow, r.surface, r.ground, r.line}) gl.DeleteProgram(p);
 }
 
 void Renderer::render(const Snapshot& s, const Camera& camera, const RenderOptions& o) {
@@ -450,8 +459,22 @@ void Renderer::render(const Snapshot& s, const Camera& camera, const RenderOptio
 
   gl.BindFramebuffer(GL_FRAMEBUFFER, r.draw_target());
   gl.Viewport(0, 0, o.width, o.height);
-  gl.ClearColor(0, 0, 0, 1);
-  gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  // The sky gradient as clears of thin horizontal bands (each under one level of 8-bit colour):
+  // on a software rasterizer a clear is a memory fill, where a full-screen pass runs a shader.
+  gl.Enable(GL_SCISSOR_TEST);
+  const Vec3f bottom(0.78f, 0.80f, 0.83f), top(0.36f, 0.45f, 0.58f);
+  constexpr int kBands = 128;
+  for (int band = 0; band < kBands; ++band) {
+    const int y0 = band * o.height / kBands, y1 = (band + 1) * o.height / kBands;
+    if (y1 <= y0) continue;
+    const float t = 0.25f * (y0 + y1) / static_cast<float>(o.height);  // half way up at the top
+    const Vec3f c = bottom + t * (top - bottom);
+    gl.Scissor(0, y0, o.width, y1 - y0);
+    gl.ClearColor(c.x(), c.y(), c.z(), 1);
+    gl.Clear(GL_COLOR_BUFFER_BIT);
+  }
+  gl.Disable(GL_SCISSOR_TEST);
+  gl.Clear(GL_DEPTH_BUFFER_BIT);
   gl.UseProgram(r.surface);
   r.set(r.surface, "u_view_proj", view_proj);
   r.set(r.surface, "u_light_view_proj", light);
@@ -515,6 +538,9 @@ void Renderer::render(const Snapshot& s, const Camera& camera, const RenderOptio
     r.set(r.line, "u_color", tone_map(Vec3f(0.55f * albedo.cwiseProduct(light_sum))));
     gl.DrawArrays(GL_LINES, parts.grid_first, parts.grid_count);
     if (o.shadows && parts.patch_count > 0) {
+      // Not pushed back like the base: its corners differ, so at equal offsets the two
+      // interpolated depths would fight.
+      gl.Disable(GL_POLYGON_OFFSET_FILL);
       gl.UseProgram(r.ground);
       r.set(r.ground, "u_view_proj", view_proj);
       r.set(r.ground, "u_light_view_proj", light);
@@ -533,17 +559,6 @@ void Renderer::render(const Snapshot& s, const Camera& camera, const RenderOptio
     gl.DepthFunc(GL_LESS);
     gl.Disable(GL_POLYGON_OFFSET_FILL);
   }
-  // The background gradient last, at the far plane with LEQUAL: only pixels nothing covered
-  // run its shader (on a software rasterizer the fill is the cost).
-  gl.DepthFunc(GL_LEQUAL);
-  gl.DepthMask(GL_FALSE);
-  gl.UseProgram(r.background);
-  r.set(r.background, "u_bottom", Vec3f(0.78f, 0.80f, 0.83f));
-  r.set(r.background, "u_top", Vec3f(0.36f, 0.45f, 0.58f));
-  gl.BindVertexArray(r.empty_vao);
-  gl.DrawArrays(GL_TRIANGLES, 0, 3);
-  gl.DepthMask(GL_TRUE);
-  gl.DepthFunc(GL_LESS);
 
   gl.UseProgram(r.line);
   r.set(r.line, "u_view_proj", view_proj);
