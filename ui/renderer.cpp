@@ -508,7 +508,7 @@ void Renderer::render(const Snapshot& s, const Camera& camera, const RenderOptio
   // Planes cover most of the image, and on a software rasterizer their fill is the cost. Their
   // lighting is constant (the normal is), so most of each is one flat colour (tone mapped here,
   // as the shaders do), its grid lines, and only the patch where shadows can fall is shaded per
-  // pixel by ground.frag (same depth, LEQUAL).
+  // pixel by ground.frag (LEQUAL, in front of the base by its polygon offset).
   auto tone_map = [](const Vec3f& c) { return Vec3f((c.array() / (1.0f + c.array())).sqrt()); };
   const Vec3f albedo(0.62f, 0.60f, 0.56f);
   std::size_t plane = 0;
