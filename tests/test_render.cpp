@@ -133,6 +133,45 @@ TEST(Render, TheBallsPixelsFollowItDownTheImage) {
       << "rows " << at_0.mean_row << " -> " << at_15.mean_row;
 }
 
+// Pixels of a colour close to c (within 40 per channel).
+long count_colour(const std::vector<unsigned char>& rgb, int r, int g, int b) {
+  long n = 0;
+  for (std::size_t k = 0; k + 2 < rgb.size(); k += 3) {
+    n +=
+        std::abs(rgb[k] - r) < 40 && std::abs(rgb[k + 1] - g) < 40 && std::abs(rgb[k + 2] - b) < 40;
+  }
+  return n;
+}
+
+TEST(Render, SpringsAndTheWireframeAreDrawn) {
+  OsmesaContext context;
+  Renderer renderer(context.functions());
+  const Model model = build_model(load_scene(scene_path("jello-ball")));
+  Inputs inputs;
+  Workspace ws;
+  init_workspace(model, inputs, ws);
+  const State state = initial_state(model);
+  const Camera camera = camera_from_scene(*model.scene.camera);
+  RenderOptions options;
+  options.width = 320;
+  options.height = 240;
+  std::vector<unsigned char> plain, with_spring, wire;
+  renderer.render(make_snapshot(model, state, inputs, ws), camera, options);
+  renderer.read_rgb(plain);
+  // A mouse spring from the top node to a point beside the ball: a yellow line with end points.
+  inputs.springs.push_back({0, model.bodies[0].tessellation.north_pole, Vec3(0.5, 0, 4.5), 10, 1});
+  renderer.render(make_snapshot(model, state, inputs, ws), camera, options);
+  renderer.read_rgb(with_spring);
+  EXPECT_EQ(count_colour(plain, 242, 217, 51), 0);
+  EXPECT_GT(count_colour(with_spring, 242, 217, 51), 20);
+  inputs.springs.clear();
+  options.wireframe = true;
+  renderer.render(make_snapshot(model, state, inputs, ws), camera, options);
+  renderer.read_rgb(wire);
+  // The element edges darken part of the ball.
+  EXPECT_GT(count_colour(wire, 20, 20, 26) - count_colour(plain, 20, 20, 26), 100);
+}
+
 TEST(Render, CameraTracksMoveTheSceneCamera) {
   Scene scene = load_scene(scene_path("jello-ball"));
   TrackDef track;
