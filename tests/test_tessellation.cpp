@@ -219,6 +219,11 @@ TEST(Tessellation, NodeAndElementCounts) {
           kind == TessellationKind::quads ? size_t(n + 1) * n : size_t(2) * n * n;
       EXPECT_EQ(t.elements.size(), elements);
       EXPECT_EQ(t.triangles.size(), size_t(2) * n * n);
+      // The element edges close a sphere: Euler's V - E + F = 2, each edge once.
+      EXPECT_EQ(static_cast<long>(t.node_count()) - static_cast<long>(t.edges.size()) +
+                    static_cast<long>(t.elements.size()),
+                2);
+      for (const auto& e : t.edges) EXPECT_LT(e[0], e[1]);
     }
     ++i;
   }

@@ -1,5 +1,7 @@
 #include "deform/tessellation.h"
 
+#include <algorithm>
+
 #include <cmath>
 #include <numbers>
 
@@ -87,6 +89,15 @@ Tessellation tessellate(const TessellationDef& def) {
     add_triangle(ElementKind::north, ring_node(R - 1, j, S), t.north_pole,
                  ring_node(R - 1, j + 1, S), u_last, -kPi + j * b, a, b);
   }
+  for (const Element& e : t.elements) {
+    const int count = element_node_count(e.kind);
+    for (int k = 0; k < count; ++k) {
+      const int from = e.nodes[k], to = e.nodes[(k + 1) % count];
+      t.edges.push_back({std::min(from, to), std::max(from, to)});
+    }
+  }
+  std::sort(t.edges.begin(), t.edges.end());
+  t.edges.erase(std::unique(t.edges.begin(), t.edges.end()), t.edges.end());
   return t;
 }
 

@@ -64,6 +64,9 @@ struct Tessellation {
   // (outward normal for a sphere x = (cos u cos v, cos u sin v, sin u)); quads split in two along
   // the same diagonal fig. 4.2 uses. Always 2 rings segments triangles.
   std::vector<std::array<int, 3>> triangles;
+  // Sides of the finite elements (a quad's four, a triangle's three), each once, (low, high)
+  // node order, sorted: the wireframe of fig. 4.1 / 4.2.
+  std::vector<std::array<int, 2>> edges;
   int south_pole = 0, north_pole = 0;  // node indices
   int node_count() const { return static_cast<int>(uv.size()); }
 };

@@ -1,29 +1,9 @@
 #include "sim/snapshot.h"
 
-#include <algorithm>
-
 #include "deform/body_dynamics.h"
 #include "sim/tracks.h"
 
 namespace pbm {
-namespace {
-
-std::vector<std::array<int, 2>> element_edges(const Tessellation& t) {
-  std::vector<std::array<int, 2>> edges;
-  for (const Element& e : t.elements) {
-    const int count = element_node_count(e.kind);
-    for (int k = 0; k < count; ++k) {
-      int a = e.nodes[k], b = e.nodes[(k + 1) % count];
-      if (a > b) std::swap(a, b);
-      edges.push_back({a, b});
-    }
-  }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  return edges;
-}
-
-}  // namespace
 
 Vec3f Snapshot::bodies_min() const {
   Vec3f lo = Vec3f::Constant(1e30f);
@@ -58,7 +38,7 @@ Snapshot make_snapshot(const Model& model, const State& state, const Inputs& inp
     out.positions.resize(bw.x.size());
     for (std::size_t i = 0; i < bw.x.size(); ++i) out.positions[i] = bw.x[i].cast<float>();
     out.triangles = body.tessellation.triangles;
-    out.edges = element_edges(body.tessellation);
+    out.edges = body.tessellation.edges;
     out.color = body.color.cast<float>();
     out.roughness = static_cast<float>(model.scene.bodies[b].material.roughness);
   }
