@@ -58,7 +58,9 @@ json full_scene() {
     "obstacles": [
       {"name": "floor", "normal": [3, 4, 0], "point": [0, 0, -1], "size": [5, 6], "friction": 1},
       {"kind": "box", "center": [1, 1, 1], "half_extents": [0.5, 1, 2],
-       "orientation": [0, 0, 0, 3], "elasticity": 0}
+       "orientation": [0, 0, 0, 3], "elasticity": 0},
+      {"name": "rock", "kind": "mesh", "file": "rock.obj", "position": [2, 0, 0],
+       "orientation": [1, 0, 0, 1], "scale": 0.5}
     ],
     "force_fields": [
       {"kind": "force_per_node", "value": [1, 0, 0], "bodies": ["jello", 1]},
@@ -137,7 +139,7 @@ TEST(SceneJson, FullSceneParsesWithValuesDefaultsAndNormalization) {
   EXPECT_EQ(plain.material.w0, 20.0);
   EXPECT_EQ(plain.material.damping, 1.4);
 
-  ASSERT_EQ(s.obstacles.size(), 2u);
+  ASSERT_EQ(s.obstacles.size(), 3u);
   const ObstacleDef& floor = s.obstacles[0];
   EXPECT_EQ(floor.kind, ObstacleKind::plane);
   EXPECT_NEAR(floor.normal[0], 0.6, 1e-15);  // (3, 4, 0) / 5
@@ -153,6 +155,16 @@ TEST(SceneJson, FullSceneParsesWithValuesDefaultsAndNormalization) {
   EXPECT_EQ(box.half_extents, Vec3(0.5, 1, 2));
   EXPECT_EQ(box.orientation, Vec4(0, 0, 0, 1));
   EXPECT_EQ(box.elasticity, 0);
+  const ObstacleDef& rock = s.obstacles[2];
+  EXPECT_EQ(rock.kind, ObstacleKind::mesh);
+  EXPECT_EQ(rock.file, "rock.obj");  // resolved against the scene's folder when the Model loads it
+  EXPECT_EQ(rock.point, Vec3(2, 0, 0));
+  EXPECT_NEAR(rock.orientation[0], std::sqrt(0.5), 1e-15);
+  EXPECT_EQ(rock.scale, 0.5);
+  ASSERT_TRUE(s.camera.has_value());
+  EXPECT_EQ(s.camera->up, Vec3(0, 0, 1));  // normalized
+  EXPECT_EQ(s.camera->fov, 35);
+  EXPECT_EQ(s.bodies[0].material.roughness, 0.2);
 
   ASSERT_EQ(s.force_fields.size(), 2u);
   EXPECT_EQ(s.force_fields[0].kind, ForceFieldKind::force_per_node);
@@ -239,6 +251,7 @@ void expect_same_scene(const Scene& a, const Scene& b) {
     EXPECT_EQ(x.material.mass, y.material.mass);
     EXPECT_EQ(x.material.damping, y.material.damping);
     EXPECT_EQ(x.material.color, y.material.color);
+    EXPECT_EQ(x.material.roughness, y.material.roughness);
   }
   ASSERT_EQ(a.obstacles.size(), b.obstacles.size());
   for (std::size_t i = 0; i < a.obstacles.size(); ++i) {
@@ -251,8 +264,17 @@ void expect_same_scene(const Scene& a, const Scene& b) {
     EXPECT_EQ(x.half_extents, y.half_extents);
     EXPECT_EQ(x.orientation, y.orientation);
     EXPECT_EQ(x.size, y.size);
+    EXPECT_EQ(x.file, y.file);
+    EXPECT_EQ(x.scale, y.scale);
     EXPECT_EQ(x.elasticity, y.elasticity);
     EXPECT_EQ(x.friction, y.friction);
+  }
+  ASSERT_EQ(a.camera.has_value(), b.camera.has_value());
+  if (a.camera) {
+    EXPECT_EQ(a.camera->position, b.camera->position);
+    EXPECT_EQ(a.camera->target, b.camera->target);
+    EXPECT_EQ(a.camera->up, b.camera->up);
+    EXPECT_EQ(a.camera->fov, b.camera->fov);
   }
   ASSERT_EQ(a.force_fields.size(), b.force_fields.size());
   for (std::size_t i = 0; i < a.force_fields.size(); ++i) {
