@@ -7,6 +7,7 @@
 #include <string>
 
 #include "embedded_shaders.h"
+#include "shadow_casters.h"
 
 namespace pbm {
 namespace {
@@ -16,6 +17,9 @@ using Vec3f = Eigen::Vector3f;
 using Mat4f = Eigen::Matrix4f;
 
 constexpr int kShadowSize = 1024;
+// A 1024² map resolves about this many triangles of one body; more only cost time
+// (shadow_casters.h).
+constexpr std::size_t kMaxShadowCasterTriangles = 4096;
 const Vec3f kKeyDirection = Vec3f(0.45f, -0.35f, 0.82f).normalized();  // towards the key light
 const Vec3f kFillDirection = Vec3f(-0.7f, 0.4f, 0.3f).normalized();
 
@@ -61,8 +65,8 @@ GLuint link(const gl::Functions& gl, const char* name) {
 
 // One vertex array with an interleaved (position, normal) buffer and two index buffers.
 struct Mesh {
-  GLuint vao = 0, vbo = 0, triangles = 0, edges = 0;
-  GLsizei triangle_count = 0, edge_count = 0;
+  GLuint vao = 0, vbo = 0, triangles = 0, edges = 0, casters = 0;
+  GLsizei triangle_count = 0, edge_count = 0, caster_count = 0;
   std::size_t vertex_capacity = 0;
 };
 
@@ -76,7 +80,8 @@ Vec3f perpendicular(const Vec3f& n) {
 
 struct Renderer::Impl {
   const gl::Functions& gl;
-  GLuint shadow = 0, surface = 0, ground = 0, line = 0;
+  GLuint shadow = 0, surface = 0, ground = 0, line = 0, sky = 0;
+  GLuint empty_vao = 0;  // the sky's triangle comes from gl_VertexID
   std::vector<Mesh> bodies;
   Mesh scratch;  // obstacles and springs, rebuilt each frame
   GLuint shadow_fbo = 0, shadow_texture = 0;
@@ -111,6 +116,7 @@ struct Renderer::Impl {
     gl.GenBuffers(1, &m.vbo);
     gl.GenBuffers(1, &m.triangles);
     gl.GenBuffers(1, &m.edges);
+    gl.GenBuffers(1, &m.casters);
     gl.BindVertexArray(m.vao);
     gl.BindBuffer(GL_ARRAY_BUFFER, m.vbo);
     gl.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
@@ -125,6 +131,7 @@ struct Renderer::Impl {
     gl.DeleteBuffers(1, &m.vbo);
     gl.DeleteBuffers(1, &m.triangles);
     gl.DeleteBuffers(1, &m.edges);
+    gl.DeleteBuffers(1, &m.casters);
     gl.DeleteVertexArrays(1, &m.vao);
     m = Mesh{};
   }
@@ -241,6 +248,12 @@ struct Renderer::Impl {
         // Through the array target: with no vertex array bound there is no element binding.
         gl.BindBuffer(GL_ARRAY_BUFFER, m.edges);
         gl.BufferData(GL_ARRAY_BUFFER, edge_count * sizeof(int), body.edges.data(), GL_STATIC_DRAW);
+        const std::vector<std::array<int, 3>> casters =
+            shadow_caster_triangles(body.positions, body.triangles, kMaxShadowCasterTriangles);
+        m.caster_count = static_cast<GLsizei>(3 * casters.size());
+        gl.BindBuffer(GL_ARRAY_BUFFER, m.casters);
+        gl.BufferData(GL_ARRAY_BUFFER, m.caster_count * sizeof(int), casters.data(),
+                      GL_STATIC_DRAW);
         m.triangle_count = triangle_count;
         m.edge_count = edge_count;
       }
@@ -398,6 +411,8 @@ Renderer::Renderer(const gl::Functions& gl) : impl_(std::make_unique<Impl>(gl)) 
   r.surface = link(gl, "surface");
   r.ground = link(gl, "ground");
   r.line = link(gl, "line");
+  r.sky = link(gl, "sky");
+  gl.GenVertexArrays(1, &r.empty_vao);
   r.create_mesh(r.scratch);
 }
 
@@ -409,7 +424,8 @@ Renderer::~Renderer() {
   r.release_targets();
   if (r.shadow_fbo) gl.DeleteFramebuffers(1, &r.shadow_fbo);
   if (r.shadow_texture) gl.DeleteTextures(1, &r.shadow_texture);
-  for (GLuint p : {r.shadow, r.surface, r.ground, r.line}) gl.DeleteProgram(p);
+  for (GLuint p : {r.shadow, r.surface, r.ground, r.line, r.sky}) gl.DeleteProgram(p);
+  gl.DeleteVertexArrays(1, &r.empty_vao);
 }
 
 void Renderer::render(const Snapshot& s, const Camera& camera, const RenderOptions& o) {
@@ -446,7 +462,9 @@ void Renderer::render(const Snapshot& s, const Camera& camera, const RenderOptio
     r.set(r.shadow, "u_light_view_proj", light);
     for (const Mesh& m : r.bodies) {
       gl.BindVertexArray(m.vao);
-      gl.DrawElements(GL_TRIANGLES, m.triangle_count, GL_UNSIGNED_INT, nullptr);
+      gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.casters);
+      gl.DrawElements(GL_TRIANGLES, m.caster_count, GL_UNSIGNED_INT, nullptr);
+      gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.triangles);
     }
     gl.BindVertexArray(r.scratch.vao);
     for (std::size_t k = 0; k < s.obstacles.size(); ++k) {
@@ -459,22 +477,10 @@ void Renderer::render(const Snapshot& s, const Camera& camera, const RenderOptio
 
   gl.BindFramebuffer(GL_FRAMEBUFFER, r.draw_target());
   gl.Viewport(0, 0, o.width, o.height);
-  // The sky gradient as clears of thin horizontal bands (each under one level of 8-bit colour):
-  // on a software rasterizer a clear is a memory fill, where a full-screen pass runs a shader.
-  gl.Enable(GL_SCISSOR_TEST);
-  const Vec3f bottom(0.78f, 0.80f, 0.83f), top(0.36f, 0.45f, 0.58f);
-  constexpr int kBands = 128;
-  for (int band = 0; band < kBands; ++band) {
-    const int y0 = band * o.height / kBands, y1 = (band + 1) * o.height / kBands;
-    if (y1 <= y0) continue;
-    const float t = 0.25f * (y0 + y1) / static_cast<float>(o.height);  // half way up at the top
-    const Vec3f c = bottom + t * (top - bottom);
-    gl.Scissor(0, y0, o.width, y1 - y0);
-    gl.ClearColor(c.x(), c.y(), c.z(), 1);
-    gl.Clear(GL_COLOR_BUFFER_BIT);
-  }
-  gl.Disable(GL_SCISSOR_TEST);
-  gl.Clear(GL_DEPTH_BUFFER_BIT);
+  // One full clear: on llvmpipe it is a per-tile flag, where scissored clears (the old banded
+  // sky) cost half a bare frame. The sky is drawn last, behind everything.
+  gl.ClearColor(0, 0, 0, 1);
+  gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   gl.UseProgram(r.surface);
   r.set(r.surface, "u_view_proj", view_proj);
   r.set(r.surface, "u_light_view_proj", light);
@@ -559,6 +565,17 @@ void Renderer::render(const Snapshot& s, const Camera& camera, const RenderOptio
     gl.DepthFunc(GL_LESS);
     gl.Disable(GL_POLYGON_OFFSET_FILL);
   }
+
+  // The sky gradient at the far plane: the depth test passes only where nothing was drawn.
+  gl.DepthFunc(GL_LEQUAL);
+  gl.DepthMask(GL_FALSE);
+  gl.UseProgram(r.sky);
+  r.set(r.sky, "u_bottom", Vec3f(0.78f, 0.80f, 0.83f));
+  r.set(r.sky, "u_top", Vec3f(0.36f, 0.45f, 0.58f));
+  gl.BindVertexArray(r.empty_vao);
+  gl.DrawArrays(GL_TRIANGLES, 0, 3);
+  gl.DepthMask(GL_TRUE);
+  gl.DepthFunc(GL_LESS);
 
   gl.UseProgram(r.line);
   r.set(r.line, "u_view_proj", view_proj);
