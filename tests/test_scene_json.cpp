@@ -68,13 +68,13 @@ json full_scene() {
     ],
     "springs": [
       {"name": "mouse", "body": "jello", "node": 21, "target": [0, 0, 5], "stiffness": 50,
-       "damping": 2, "t_begin": 1, "t_end": 4},
+       "damping": 2, "t_begin": 1, "t_end": 4, "max_force": 30},
       {"body": 1, "material_point": [0.5, -1], "target": [1, 1, 1]}
     ],
     "tracks": [
       {"target": "bodies[0].q_s0.t1", "interpolation": "smooth", "keys": [[0, 0], [1, 0.5]]},
       {"target": "gravity[2]", "keys": [[0, -9.81]]},
-      {"target": "springs[0].target[1]", "keys": [[0, 0], [2, 1]]},
+      {"target": "springs[0].target[1]", "interpolation": "step", "keys": [[0, 0], [2, 1]]},
       {"target": "springs[1].stiffness", "keys": [[0, 100], [0.5, 200], [1, 100]]}
     ]
   })");
@@ -177,6 +177,8 @@ TEST(SceneJson, FullSceneParsesWithValuesDefaultsAndNormalization) {
   EXPECT_EQ(s.springs[0].node, 21);  // last node of 2 + 4 * 5 = 22
   EXPECT_FALSE(s.springs[0].material_point.has_value());
   EXPECT_EQ(s.springs[0].t_end, 4);
+  EXPECT_EQ(s.springs[0].max_force, 30);
+  EXPECT_EQ(s.springs[1].max_force, 1e300);
   EXPECT_EQ(s.springs[1].name, "spring1");
   EXPECT_EQ(s.springs[1].node, -1);
   ASSERT_TRUE(s.springs[1].material_point.has_value());
@@ -192,6 +194,7 @@ TEST(SceneJson, FullSceneParsesWithValuesDefaultsAndNormalization) {
   EXPECT_EQ(s.tracks[0].keys[1].value, 0.5);
   EXPECT_EQ(s.tracks[1].target, "gravity[2]");
   EXPECT_EQ(s.tracks[1].interpolation, Interpolation::linear);
+  EXPECT_EQ(s.tracks[2].interpolation, Interpolation::step);
   EXPECT_EQ(s.tracks[3].target, "springs[1].stiffness");
 }
 
@@ -298,6 +301,7 @@ void expect_same_scene(const Scene& a, const Scene& b) {
     EXPECT_EQ(x.damping, y.damping);
     EXPECT_EQ(x.t_begin, y.t_begin);
     EXPECT_EQ(x.t_end, y.t_end);
+    EXPECT_EQ(x.max_force, y.max_force);
   }
   ASSERT_EQ(a.tracks.size(), b.tracks.size());
   for (std::size_t i = 0; i < a.tracks.size(); ++i) {
@@ -493,6 +497,9 @@ TEST(SceneJsonErrors, RangesNameTheField) {
   j = full_scene();
   j["springs"][0]["t_end"] = 0.5;  // before t_begin = 1
   expect_error(j, "springs[0].t_end", "must be >= t_begin");
+  j = full_scene();
+  j["springs"][0]["max_force"] = 0;
+  expect_error(j, "springs[0].max_force", "must be > 0");
 }
 
 TEST(SceneJsonErrors, ShapeParametersCheckedByNameAndIndex) {

@@ -22,7 +22,8 @@ enum class DynamicsOrder { second, first };
 enum class IntegratorKind { euler, rk4, rk45 };
 enum class ObstacleKind { plane, box, mesh };
 enum class ForceFieldKind { acceleration, force_per_node };
-enum class Interpolation { linear, smooth };
+// step holds each key's value until the next key (recorded mouse drags).
+enum class Interpolation { linear, smooth, step };
 
 // Number of q_s entries for each shape kind.
 int shape_parameter_count(ShapeKind kind);
@@ -91,6 +92,7 @@ struct SpringDef {
   Real damping = 1.0;                  // [N s/m], >= 0
   Real t_begin = 0.0;                  // active interval [s]
   Real t_end = 1e300;
+  Real max_force = 1e300;  // [N], > 0: the force's magnitude is clamped to it
 };
 
 struct Keyframe {

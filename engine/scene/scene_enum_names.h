@@ -32,7 +32,9 @@ inline constexpr NameTable<ObstacleKind, 3> kObstacleKindNames{
 inline constexpr NameTable<ForceFieldKind, 2> kForceFieldKindNames{
     {{"acceleration", ForceFieldKind::acceleration},
      {"force_per_node", ForceFieldKind::force_per_node}}};
-inline constexpr NameTable<Interpolation, 2> kInterpolationNames{
-    {{"linear", Interpolation::linear}, {"smooth", Interpolation::smooth}}};
+inline constexpr NameTable<Interpolation, 3> kInterpolationNames{
+    {{"linear", Interpolation::linear},
+     {"smooth", Interpolation::smooth},
+     {"step", Interpolation::step}}};
 
 }  // namespace pbm

@@ -311,7 +311,7 @@ ForceFieldDef parse_force_field(const JsonNode& node, const std::vector<BodyDef>
 SpringDef parse_spring(const JsonNode& node, std::size_t index,
                        const std::vector<BodyDef>& bodies) {
   require_object(node, {"name", "body", "node", "material_point", "target", "stiffness", "damping",
-                        "t_begin", "t_end"});
+                        "t_begin", "t_end", "max_force"});
   SpringDef spring;
   spring.name = "spring" + std::to_string(index);
   if (auto name = find_child(node, "name")) spring.name = read_string(*name);
@@ -351,6 +351,9 @@ SpringDef parse_spring(const JsonNode& node, std::size_t index,
     if (!(spring.t_end >= spring.t_begin)) {
       fail(*t_end, "must be >= t_begin (" + format_real(spring.t_begin) + ")");
     }
+  }
+  if (auto max_force = find_child(node, "max_force")) {
+    spring.max_force = require_positive(*max_force, read_real(*max_force));
   }
   return spring;
 }

@@ -112,6 +112,7 @@ Json write_spring(const SpringDef& spring) {
   j["damping"] = spring.damping;
   j["t_begin"] = spring.t_begin;
   if (spring.t_end < kDefaultSpringEnd) j["t_end"] = spring.t_end;
+  if (spring.max_force < kDefaultSpringEnd) j["max_force"] = spring.max_force;
   return j;
 }
 

@@ -294,6 +294,7 @@ Model build_model(const Scene& scene) {
     spring.damping = def.damping;
     spring.t_begin = def.t_begin;
     spring.t_end = def.t_end;
+    spring.max_force = def.max_force;
     model.springs.push_back(spring);
   }
   for (int t = 0; t < static_cast<int>(scene.tracks.size()); ++t) {

@@ -95,6 +95,7 @@ struct SpringModel {
   Vec3 target = Vec3::Zero();
   Real stiffness = 0, damping = 0;
   Real t_begin = 0, t_end = 1e300;
+  Real max_force = 1e300;
 };
 
 enum class TrackTarget {

@@ -12,6 +12,7 @@ Real evaluate_track(const TrackModel& track, Real t) {
                                    [](Real time, const Keyframe& key) { return time < key.time; });
   const std::size_t i = static_cast<std::size_t>(it - k.begin()) - 1;
   const Keyframe& a = k[i];
+  if (track.interpolation == Interpolation::step) return a.value;
   const Keyframe& b = k[i + 1];
   const Real h = b.time - a.time;
   const Real x = (t - a.time) / h;

@@ -43,8 +43,12 @@ void accumulate_external_forces(const Model& model, const Inputs& inputs, Real t
     const SpringModel& spring = model.springs[s];
     if (spring.body != b || t < spring.t_begin || t > spring.t_end) continue;
     const int i = spring.node;
-    bw.force[i] += ws.drive.spring_stiffness[s] * (ws.drive.spring_target[s] - bw.x[i]) -
-                   spring.damping * bw.x_dot[i];
+    Vec3 f = ws.drive.spring_stiffness[s] * (ws.drive.spring_target[s] - bw.x[i]) -
+             spring.damping * bw.x_dot[i];
+    // A dragged point far from its body must not fling it: the pull saturates (mouse springs).
+    const Real norm = f.norm();
+    if (norm > spring.max_force) f *= spring.max_force / norm;
+    bw.force[i] += f;
   }
   for (const MouseSpring& spring : inputs.springs) {
     if (spring.body != b || spring.node < 0 || spring.node >= body.n_nodes()) continue;
