@@ -9,6 +9,16 @@
 
 namespace pbm::gl {
 
+// OpenGL 1.0/1.1 entry points by our own names: when Qt's <GL/gl.h> comes first, glcorearb.h
+// skips its 1.1 block and these PFN types do not exist.
+using PolygonOffsetProc = void(APIENTRYP)(GLfloat factor, GLfloat units);
+using DrawElementsProc = void(APIENTRYP)(GLenum mode, GLsizei count, GLenum type,
+                                         const void* indices);
+using DrawArraysProc = void(APIENTRYP)(GLenum mode, GLint first, GLsizei count);
+using GenTexturesProc = void(APIENTRYP)(GLsizei n, GLuint* textures);
+using BindTextureProc = void(APIENTRYP)(GLenum target, GLuint texture);
+using DeleteTexturesProc = void(APIENTRYP)(GLsizei n, const GLuint* textures);
+
 #define PBM_GL_FUNCTIONS(X)                                                  \
   X(PFNGLGETSTRINGPROC, GetString)                                           \
   X(PFNGLGETINTEGERVPROC, GetIntegerv)                                       \
@@ -22,8 +32,9 @@ namespace pbm::gl {
   X(PFNGLDEPTHFUNCPROC, DepthFunc)                                           \
   X(PFNGLDEPTHMASKPROC, DepthMask)                                           \
   X(PFNGLCULLFACEPROC, CullFace)                                             \
-  X(PFNGLPOLYGONOFFSETPROC, PolygonOffset)                                   \
+  X(PolygonOffsetProc, PolygonOffset)                                        \
   X(PFNGLBLENDFUNCPROC, BlendFunc)                                           \
+  X(PFNGLBLENDEQUATIONPROC, BlendEquation)                                   \
   X(PFNGLCREATESHADERPROC, CreateShader)                                     \
   X(PFNGLSHADERSOURCEPROC, ShaderSource)                                     \
   X(PFNGLCOMPILESHADERPROC, CompileShader)                                   \
@@ -54,8 +65,8 @@ namespace pbm::gl {
   X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                                   \
   X(PFNGLVERTEXATTRIBPOINTERPROC, VertexAttribPointer)                       \
   X(PFNGLENABLEVERTEXATTRIBARRAYPROC, EnableVertexAttribArray)               \
-  X(PFNGLDRAWELEMENTSPROC, DrawElements)                                     \
-  X(PFNGLDRAWARRAYSPROC, DrawArrays)                                         \
+  X(DrawElementsProc, DrawElements)                                          \
+  X(DrawArraysProc, DrawArrays)                                              \
   X(PFNGLGENFRAMEBUFFERSPROC, GenFramebuffers)                               \
   X(PFNGLBINDFRAMEBUFFERPROC, BindFramebuffer)                               \
   X(PFNGLFRAMEBUFFERTEXTURE2DPROC, FramebufferTexture2D)                     \
@@ -67,13 +78,13 @@ namespace pbm::gl {
   X(PFNGLRENDERBUFFERSTORAGEPROC, RenderbufferStorage)                       \
   X(PFNGLRENDERBUFFERSTORAGEMULTISAMPLEPROC, RenderbufferStorageMultisample) \
   X(PFNGLDELETERENDERBUFFERSPROC, DeleteRenderbuffers)                       \
-  X(PFNGLGENTEXTURESPROC, GenTextures)                                       \
-  X(PFNGLBINDTEXTUREPROC, BindTexture)                                       \
+  X(GenTexturesProc, GenTextures)                                            \
+  X(BindTextureProc, BindTexture)                                            \
   X(PFNGLTEXIMAGE2DPROC, TexImage2D)                                         \
   X(PFNGLTEXPARAMETERIPROC, TexParameteri)                                   \
   X(PFNGLTEXPARAMETERFVPROC, TexParameterfv)                                 \
   X(PFNGLACTIVETEXTUREPROC, ActiveTexture)                                   \
-  X(PFNGLDELETETEXTURESPROC, DeleteTextures)                                 \
+  X(DeleteTexturesProc, DeleteTextures)                                      \
   X(PFNGLBLITFRAMEBUFFERPROC, BlitFramebuffer)                               \
   X(PFNGLREADPIXELSPROC, ReadPixels)                                         \
   X(PFNGLPIXELSTOREIPROC, PixelStorei)                                       \

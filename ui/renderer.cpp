@@ -7,6 +7,7 @@
 #include <string>
 
 #include "embedded_shaders.h"
+#include "shader_program.h"
 #include "shadow_casters.h"
 
 namespace pbm {
@@ -25,42 +26,6 @@ const Vec3f kFillDirection = Vec3f(-0.7f, 0.4f, 0.3f).normalized();
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-GLuint compile(const gl::Functions& gl, GLenum type, const char* source, const char* name) {
-  const GLuint shader = gl.CreateShader(type);
-  gl.ShaderSource(shader, 1, &source, nullptr);
-  gl.CompileShader(shader);
-  GLint ok = 0;
-  gl.GetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    gl.GetShaderInfoLog(shader, sizeof(log), nullptr, log);
-    gl.DeleteShader(shader);
-    throw std::runtime_error(std::string("shader ") + name + " does not compile: " + log);
-  }
-  return shader;
-}
-
-GLuint link(const gl::Functions& gl, const char* name) {
-  const GLuint vs = compile(gl, GL_VERTEX_SHADER, shader_source(std::string(name) + ".vert"), name);
-  const GLuint fs =
-      compile(gl, GL_FRAGMENT_SHADER, shader_source(std::string(name) + ".frag"), name);
-  const GLuint program = gl.CreateProgram();
-  gl.AttachShader(program, vs);
-  gl.AttachShader(program, fs);
-  gl.LinkProgram(program);
-  gl.DeleteShader(vs);
-  gl.DeleteShader(fs);
-  GLint ok = 0;
-  gl.GetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    gl.GetProgramInfoLog(program, sizeof(log), nullptr, log);
-    gl.DeleteProgram(program);
-    throw std::runtime_error(std::string("shader program ") + name + " does not link: " + log);
-  }
-  return program;
 }
 
 // One vertex array with an interleaved (position, normal) buffer and two index buffers.
@@ -407,11 +372,11 @@ struct Renderer::Impl {
 
 Renderer::Renderer(const gl::Functions& gl) : impl_(std::make_unique<Impl>(gl)) {
   Impl& r = *impl_;
-  r.shadow = link(gl, "shadow");
-  r.surface = link(gl, "surface");
-  r.ground = link(gl, "ground");
-  r.line = link(gl, "line");
-  r.sky = link(gl, "sky");
+  r.shadow = link_program(gl, "shadow");
+  r.surface = link_program(gl, "surface");
+  r.ground = link_program(gl, "ground");
+  r.line = link_program(gl, "line");
+  r.sky = link_program(gl, "sky");
   gl.GenVertexArrays(1, &r.empty_vao);
   r.create_mesh(r.scratch);
 }
@@ -638,6 +603,15 @@ void Renderer::render_bare(const Snapshot& s, const Camera& camera, const Render
   r.resolve();
   gl.Finish();
   r.times.draw = seconds_since(t0);
+}
+
+void Renderer::present(GLuint framebuffer) const {
+  const Impl& r = *impl_;
+  r.gl.BindFramebuffer(GL_READ_FRAMEBUFFER, r.resolve_fbo);
+  r.gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
+  r.gl.BlitFramebuffer(0, 0, r.width, r.height, 0, 0, r.width, r.height, GL_COLOR_BUFFER_BIT,
+                       GL_NEAREST);
+  r.gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer);
 }
 
 void Renderer::read_rgb(std::vector<unsigned char>& rgb) const {

@@ -40,6 +40,8 @@ class Renderer {
   // shader and nothing else: the rasterizer's own cost, against which `pbm bench render`
   // measures ours.
   void render_bare(const Snapshot& snapshot, const Camera& camera, const RenderOptions& options);
+  // Copies the last image into `framebuffer` (a window's, e.g. QOpenGLWidget's) at its origin.
+  void present(GLuint framebuffer) const;
   // The last image, rows top to bottom, 8-bit RGB.
   void read_rgb(std::vector<unsigned char>& rgb) const;
 

@@ -1,0 +1,10 @@
+#pragma once
+// Programs from the shaders embedded at build time (shaders/NAME.vert + NAME.frag).
+#include "gl_functions.h"
+
+namespace pbm {
+
+// Compiles and links; throws std::runtime_error with the info log on failure.
+GLuint link_program(const gl::Functions& gl, const char* name);
+
+}  // namespace pbm
