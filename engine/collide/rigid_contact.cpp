@@ -375,7 +375,6 @@ ContactResolution resolve_penetrations(const Model& model, const BodyModel& body
           const Vec3 dx = (kProjectionMargin - phi) * n;  // step 1: project along n
           q.segment<3>(d_q + 3 * i) += Rt * dx;           // step 2: the new d
           ws.x[i] += dx;
-          ws.p[i] += Rt * dx;
           // An inelastic node impact, with Coulomb's law on the impulse (5.12): the slip
           // changes by at most beta_f times the normal velocity change. Both only remove energy.
           const Real vn = ws.x_dot[i].dot(n);
@@ -393,9 +392,13 @@ ContactResolution resolve_penetrations(const Model& model, const BodyModel& body
           }
         }
       }
-      // No node moves or changes velocity: only p, measured from the moved origin.
-      const Vec3 shift = recenter_displacements(body, q, v);
-      for (Vec3& p : ws.p) p -= shift;
+      // No node moves or changes velocity: only p, measured from the moved origin. Recomputed
+      // from q as compute_body_kinematics does (s is unchanged), not updated in place: the
+      // factorization below is keyed on q and reused by the next step, so it must be the one a
+      // fresh workspace computes at this q, or results would depend on the workspace's history
+      // (DESIGN §1; a timeline re-simulation or a rebuilt workspace would differ in the last bits).
+      recenter_displacements(body, q, v);
+      for (int i = 0; i < body.n_nodes(); ++i) ws.p[i] = ws.s[i] + q.segment<3>(d_q + 3 * i);
     }
     // With or without contact the mean-axis split is restored: its velocity form drifts between
     // steps. The factorization at the final q is the one the next step starts with.

@@ -101,6 +101,11 @@ void resize_workspace(const BodyModel& body, BodyWorkspace& ws) {
   ws.node_mass_3.resize(3 * n);
   for (int i = 0; i < n; ++i) ws.node_mass_3.segment<3>(3 * i).setConstant(body.node_mass[i]);
   ws.kinematics_valid = false;
+  // The caches keyed on q_s and q describe the s, Jt and A just cleared: a workspace resized
+  // again (init_workspace after an edit) must not reuse them.
+  ws.shape_key.resize(0);
+  ws.shape_has_J = false;
+  ws.mass_key.resize(0);
 }
 
 namespace {
