@@ -1,0 +1,546 @@
+#include "sim/runner.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <numbers>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "scene/scene_json.h"
+
+namespace pbm {
+namespace {
+
+using Json = nlohmann::ordered_json;  // keeps the scene's keys in their documented order
+using Clock = std::chrono::steady_clock;
+
+bool same_bits(const VecX& a, const VecX& b) {
+  return a.size() == b.size() &&
+         std::memcmp(a.data(), b.data(), sizeof(Real) * static_cast<std::size_t>(a.size())) == 0;
+}
+
+// "/bodies/0/material/w1" -> "bodies[0].material.w1": the path form pbm::Error uses (DESIGN §7).
+std::string path_of_pointer(const std::string& pointer) {
+  std::string path;
+  std::size_t begin = 1;
+  while (begin <= pointer.size() && !pointer.empty()) {
+    std::size_t end = pointer.find('/', begin);
+    if (end == std::string::npos) end = pointer.size();
+    std::string token = pointer.substr(begin, end - begin);
+    for (std::size_t i = 0; (i = token.find('~', i)) != std::string::npos; ++i) {
+      if (i + 1 < token.size()) token.replace(i, 2, token[i + 1] == '1' ? "/" : "~");
+    }
+    const bool index = !token.empty() && std::all_of(token.begin(), token.end(),
+                                                     [](char c) { return c >= '0' && c <= '9'; });
+    path += index ? "[" + token + "]" : (path.empty() ? "" : ".") + token;
+    begin = end + 1;
+  }
+  return path;
+}
+
+std::string spring_path(int spring) {
+  return "springs[" + std::to_string(spring) + "]";
+}
+
+std::string target_track_name(int spring, int k) {
+  return spring_path(spring) + ".target[" + std::to_string(k) + "]";
+}
+
+TrackDef* find_track(Scene& scene, const std::string& target) {
+  for (TrackDef& track : scene.tracks) {
+    if (track.target == target) return &track;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+MouseSpringParameters mouse_spring_parameters(const Model& model, int body) {
+  const BodyModel& b = model.bodies[body];
+  const Real m_body = b.mass;
+  const Real m_node = b.node_mass.minCoeff();
+  const Real nu = b.damping;  // D = nu M (sec. 6.1) [1/s]
+  const Real dt = model.solver.dt;
+  const Real g = model.gravity.norm() > 0 ? model.gravity.norm() : 9.81;
+  MouseSpringParameters p;
+  // The body on the spring, m x'' + nu m x' + k x = k x_target, should follow a hand within
+  // about 1 / omega, omega = 2 pi 1.5 Hz: quick, yet slow enough that the body's own deformation
+  // shows. Lightly damped (the jello: nu = 1.4 / s) that is k = m omega^2; where its own damping
+  // dominates (nu > omega: a body moving as through honey) the response time is nu m / k, so
+  // k = m nu omega. But the spring pulls one node: alone on it that node oscillates at
+  // sqrt(k / m_node), and the explicit substep is stable only for omega_node dt < 2; a quarter
+  // of the bound (omega_node dt = 0.5) leaves room for the membrane's own stiffness there.
+  const Real omega = 2 * std::numbers::pi * 1.5;
+  p.stiffness = std::min(m_body * omega * std::max(omega, nu), 0.25 * m_node / (dt * dt));
+  // 0.7 of critical damping for the body on the spring settles it in about one period without
+  // overshooting much; the damper too acts on one node, where explicit damping is stable for
+  // c dt / m_node < 2, and 0.5 keeps it well inside.
+  p.damping = std::min(2 * 0.7 * std::sqrt(p.stiffness * m_body), 0.5 * m_node / dt);
+  // Three body weights lift and swing the body briskly; a heavily damped body needs nu m v to
+  // move at all, here at a brisk hand's 3 m/s. No more: a target dragged far away (the cursor
+  // off the screen) must not fling the body or tear the node out of the membrane.
+  constexpr Real kHandSpeed = 3.0;  // [m/s]
+  p.max_force = m_body * std::max(3 * g, nu * kHandSpeed);
+  return p;
+}
+
+// ---- RunnerCore -------------------------------------------------------------------------------
+
+RunnerCore::RunnerCore(const Scene& scene, std::size_t cache_bytes)
+    : scene_(std::make_shared<const Scene>(scene)),
+      model_(std::make_unique<Model>(build_model(*scene_))),
+      ws_(std::make_unique<Workspace>()),
+      state_(initial_state(*model_)),
+      timeline_(cache_bytes) {
+  init_workspace(*model_, inputs_, *ws_);
+  measure_state(*model_, state_, *ws_, last_stats_);
+  timeline_.store(0, state_, last_stats_);
+}
+
+int RunnerCore::last_frame() const {
+  return static_cast<int>(std::lround(model_->solver.duration * model_->solver.fps));
+}
+
+Snapshot RunnerCore::snapshot() {
+  return make_snapshot(*model_, state_, inputs_, *ws_);
+}
+
+std::string RunnerCore::apply(const Command& command) {
+  message_.clear();
+  std::string refusal = std::visit([this](const auto& c) { return handle(c); }, command);
+  if (!refusal.empty()) message_ = refusal;
+  return refusal;
+}
+
+bool RunnerCore::tick() {
+  if (!playing_) return false;
+  if (frame_ >= last_frame()) {
+    playing_ = false;
+    return false;
+  }
+  if (!step_forward()) return false;
+  if (frame_ >= last_frame()) playing_ = false;
+  return true;
+}
+
+std::string RunnerCore::handle(const Play&) {
+  if (frame_ >= last_frame()) return "already at the last frame: seek back to play again";
+  playing_ = true;
+  return {};
+}
+
+std::string RunnerCore::handle(const Pause&) {
+  playing_ = false;
+  return {};
+}
+
+std::string RunnerCore::handle(const StepFrame&) {
+  playing_ = false;
+  if (frame_ >= last_frame()) return "already at the last frame";
+  step_forward();
+  return {};
+}
+
+std::string RunnerCore::handle(const Seek& seek) {
+  if (seek.frame < 0 || seek.frame > last_frame()) {
+    return "cannot seek to frame " + std::to_string(seek.frame) + ": frames are 0 to " +
+           std::to_string(last_frame());
+  }
+  release_spring();
+  go_to(seek.frame);
+  return {};
+}
+
+std::string RunnerCore::handle(const ResetToStart&) {
+  release_spring();
+  playing_ = false;
+  go_to(0);
+  return {};
+}
+
+std::string RunnerCore::handle(const EditScene& edit) {
+  // Through the file format, so that an edit is validated exactly like a loaded file and names
+  // the field it broke in the same words (DESIGN §7).
+  if (active_spring_ >= 0) return "finish dragging the mouse spring before editing the scene";
+  Scene edited;
+  try {
+    Json json = Json::parse(scene_to_json(*scene_));
+    Json value = Json::parse(edit.value_json);
+    if (edit.pointer.empty()) {
+      json = std::move(value);
+    } else {
+      json[Json::json_pointer(edit.pointer)] = std::move(value);
+    }
+    edited = parse_scene(json.dump(), scene_->file);
+  } catch (const Json::exception& e) {
+    return Error(scene_->file, path_of_pointer(edit.pointer),
+                 std::string("cannot apply the edit: ") + e.what())
+        .what();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return rebuild(std::move(edited));
+}
+
+std::string RunnerCore::handle(const SpringBegin& begin) {
+  const int n_bodies = static_cast<int>(model_->bodies.size());
+  if (begin.body < 0 || begin.body >= n_bodies) {
+    return "mouse spring: no body " + std::to_string(begin.body) + " (the scene has " +
+           std::to_string(n_bodies) + ")";
+  }
+  const int n_nodes = model_->bodies[begin.body].n_nodes();
+  if (begin.node < 0 || begin.node >= n_nodes) {
+    return "mouse spring: body '" + model_->bodies[begin.body].name + "' has no node " +
+           std::to_string(begin.node) + " (it has " + std::to_string(n_nodes) + ")";
+  }
+  if (!begin.target.allFinite()) return "mouse spring: the target is not finite";
+  release_spring();
+  Scene scene = *scene_;
+  const int drags = static_cast<int>(
+      std::count_if(scene.springs.begin(), scene.springs.end(),
+                    [](const SpringDef& s) { return s.name.rfind("drag ", 0) == 0; }));
+  const int index = static_cast<int>(scene.springs.size());
+  const MouseSpringParameters p = mouse_spring_parameters(*model_, begin.body);
+  const Real t = state_.time;
+  // Recorded as an ordinary spring of the scene (sec. 6.4), so that playing the timeline again,
+  // or the saved file, reproduces the drag: it acts from now on, never on a frame already
+  // computed, which therefore stay valid.
+  SpringDef spring;
+  spring.name = "drag " + std::to_string(drags + 1);
+  spring.body = begin.body;
+  spring.node = begin.node;
+  spring.target = begin.target;
+  spring.stiffness = p.stiffness;
+  spring.damping = p.damping;
+  spring.max_force = p.max_force;
+  spring.t_begin = t;
+  spring.t_end = 1e300;
+  scene.springs.push_back(spring);
+  // The cursor jumps between mouse events: the target is held from one event to the next
+  // (step), never interpolated toward a position the hand had not reached yet.
+  for (int k = 0; k < 3; ++k) {
+    scene.tracks.push_back({.target = target_track_name(index, k),
+                            .interpolation = Interpolation::step,
+                            .keys = {{t, begin.target[k]}}});
+  }
+  // Grabbing a body that is at rest must not jolt it: the pull grows over kSpringRampSeconds.
+  scene.tracks.push_back({.target = spring_path(index) + ".stiffness",
+                          .interpolation = Interpolation::linear,
+                          .keys = {{t, 0.0}, {t + kSpringRampSeconds, p.stiffness}}});
+  std::string refusal = rebuild(std::move(scene));
+  if (refusal.empty()) active_spring_ = index;
+  return refusal;
+}
+
+std::string RunnerCore::handle(const SpringMove& move) {
+  if (active_spring_ < 0) return "mouse spring: no spring is being dragged";
+  if (!move.target.allFinite()) return "mouse spring: the target is not finite";
+  Scene scene = *scene_;
+  const Real t = state_.time;
+  for (int k = 0; k < 3; ++k) {
+    TrackDef* track = find_track(scene, target_track_name(active_spring_, k));
+    if (!track)
+      return "mouse spring: the scene no longer has " + target_track_name(active_spring_, k);
+    // Keys later than now belong to frames that are dropped with this move.
+    std::erase_if(track->keys, [t](const Keyframe& key) { return key.time > t; });
+    if (!track->keys.empty() && track->keys.back().time == t) {
+      track->keys.back().value = move.target[k];
+    } else {
+      track->keys.push_back({t, move.target[k]});
+    }
+  }
+  return rebuild(std::move(scene));
+}
+
+std::string RunnerCore::handle(const SpringEnd&) {
+  if (active_spring_ < 0) return "mouse spring: no spring is being dragged";
+  release_spring();
+  return {};
+}
+
+void RunnerCore::release_spring() {
+  const int s = active_spring_;
+  active_spring_ = -1;
+  if (s < 0 || s >= static_cast<int>(scene_->springs.size())) return;
+  Scene scene = *scene_;
+  SpringDef& spring = scene.springs[static_cast<std::size_t>(s)];
+  spring.t_end = std::max(state_.time, spring.t_begin);
+  // Only the spring's end changed, and it lies at or after every cached frame the edit keeps:
+  // this scene compiles whenever the current one does.
+  rebuild(std::move(scene));
+}
+
+std::string RunnerCore::rebuild(Scene edited) {
+  auto scene = std::make_shared<const Scene>(std::move(edited));
+  Model model;
+  try {
+    model = build_model(*scene);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  State start = initial_state(model);
+  // Frames up to the current one stay valid when the edit changes neither where the run starts
+  // nor when frames fall (DESIGN §5: an edit at frame f invalidates the frames after f).
+  const State& old_start = *timeline_.find(0);
+  const bool same_start = model.solver.fps == model_->solver.fps &&
+                          same_bits(start.q, old_start.q) && same_bits(start.v, old_start.v);
+  // The integrator's memory (rk45's step size, the contact flag of the step-size reduction)
+  // carries over an edit that keeps the state, so that a drag recorded while playing replays the
+  // same from the saved scene, where no rebuild interrupts the run.
+  const Real rk45_h = ws_->integrator.rk45_h;
+  const int contacts = ws_->contacts;
+  // Same address: nothing outside holds the model, but the workspace is rebuilt from scratch
+  // because its caches (shape, mass factorization) are keyed on q alone, not on the model.
+  *model_ = std::move(model);
+  scene_ = std::move(scene);
+  ++revision_;
+  ws_ = std::make_unique<Workspace>();
+  init_workspace(*model_, inputs_, *ws_);
+  const int target = std::min(frame_, last_frame());
+  if (same_start) {
+    ws_->integrator.rk45_h = rk45_h;
+    ws_->contacts = contacts;
+    timeline_.drop_after(target);
+    go_to(target);
+  } else {
+    timeline_.clear();
+    state_ = std::move(start);
+    frame_ = 0;
+    measure_state(*model_, state_, *ws_, last_stats_);
+    timeline_.store(0, state_, last_stats_);
+    go_to(target);
+  }
+  return {};
+}
+
+bool RunnerCore::advance() {
+  FrameResult result = advance_frame(*model_, state_, *ws_);
+  if (!result.ok) {
+    // DESIGN §6: the guard gave up; the state is still that of frame_, never a NaN frame.
+    message_ = "frame " + std::to_string(frame_ + 1) + ": " + result.message;
+    playing_ = false;
+    return false;
+  }
+  ++frame_;
+  last_stats_ = std::move(result.stats);
+  timeline_.store(frame_, state_, last_stats_);
+  return true;
+}
+
+bool RunnerCore::step_forward() {
+  if (timeline_.find(frame_ + 1)) {
+    restore(frame_ + 1);
+    return true;
+  }
+  return advance();
+}
+
+void RunnerCore::restore(int frame) {
+  state_ = *timeline_.find(frame);
+  last_stats_ = *timeline_.stats(frame);
+  frame_ = frame;
+  // advance_frame reuses the last frame's measurement only for the state it measured.
+  ws_->last_measured.valid = false;
+}
+
+void RunnerCore::go_to(int frame) {
+  if (frame == frame_) return;
+  if (timeline_.find(frame)) {
+    restore(frame);
+    return;
+  }
+  // From the nearest cached frame before it, or from the current state if that is nearer (it is
+  // exactly frame_'s state even when the cache has evicted frame_).
+  const int start = timeline_.nearest_at_or_before(frame);
+  if (!(frame_ < frame && frame_ > start)) restore(start);
+  while (frame_ < frame && advance()) {
+  }
+}
+
+void replay(RunnerCore& core, const std::vector<JournalEntry>& journal) {
+  for (const JournalEntry& entry : journal) {
+    if (const Command* command = std::get_if<Command>(&entry)) {
+      core.apply(*command);
+    } else {
+      core.tick();
+    }
+  }
+}
+
+// ---- Runner -----------------------------------------------------------------------------------
+
+Runner::Runner(const Scene& scene, RunnerOptions options)
+    : core_(scene, options.cache_bytes), options_(options) {
+  publish_snapshot();
+  status_ = make_status();
+  thread_ = std::thread([this] { run(); });
+}
+
+Runner::~Runner() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+void Runner::post(Command command) {
+  {
+    std::lock_guard lock(mutex_);
+    queue_.push_back(std::move(command));
+  }
+  wake_.notify_one();
+}
+
+void Runner::wait_idle() {
+  std::unique_lock lock(mutex_);
+  idle_.wait(lock, [this] { return queue_.empty() && !busy_ && !status_.playing; });
+}
+
+void Runner::set_speed(double speed) {
+  {
+    std::lock_guard lock(mutex_);
+    options_.speed = speed > 0 ? speed : 1.0;
+  }
+  wake_.notify_one();
+}
+
+std::shared_ptr<const Snapshot> Runner::snapshot() {
+  std::lock_guard lock(reader_mutex_);
+  snapshots_.take();
+  return snapshots_.front();
+}
+
+RunnerStatus Runner::status() const {
+  std::lock_guard lock(mutex_);
+  return status_;
+}
+
+std::vector<JournalEntry> Runner::journal() const {
+  std::lock_guard lock(mutex_);
+  return journal_;
+}
+
+void Runner::publish_snapshot() {
+  snapshots_.back() = std::make_shared<const Snapshot>(core_.snapshot());
+  snapshots_.publish();
+}
+
+RunnerStatus Runner::make_status() const {
+  RunnerStatus s;
+  s.frame = core_.frame();
+  s.last_frame = core_.last_frame();
+  s.playing = core_.playing();
+  s.message = core_.message();
+  s.cached = core_.timeline().ranges();
+  s.stats = core_.last_stats();
+  s.scene = core_.shared_scene();
+  s.scene_revision = core_.scene_revision();
+  return s;
+}
+
+// The engine thread. core_ belongs to it alone (readers get copies: status, snapshots), so it is
+// used without the lock; the lock guards the queue, the journal, the status and the flags.
+// While playing, frames and commands interleave: a frame that is due goes first (real time), or
+// frames and commands alternate (as fast as possible), so that neither a stream of mouse moves
+// stalls play nor a long play delays an edit by more than a frame.
+void Runner::run() {
+  // Snapshots cost a kinematics pass and a copy of every node: at most one per display refresh
+  // while busy, and always one before going idle, so the last one shows the final state.
+  constexpr auto kSnapshotInterval = std::chrono::microseconds(8000);
+  Clock::time_point last_snapshot = Clock::now();
+  bool snapshot_stale = false;
+  bool paced = false;  // play's real-time clock is running
+  Clock::time_point next_frame;
+  bool ticked_last = false;
+  // Frames stepped during the last second: (wall time, simulated seconds stepped so far).
+  std::deque<std::pair<Clock::time_point, double>> rate;
+  double simulated = 0;
+
+  std::unique_lock lock(mutex_);
+  while (!stop_) {
+    const bool has_command = !queue_.empty();
+    const bool playing = core_.playing();
+    if (!has_command && !playing) {
+      paced = false;
+      rate.clear();
+      if (snapshot_stale) {
+        lock.unlock();
+        publish_snapshot();
+        lock.lock();
+        snapshot_stale = false;
+        last_snapshot = Clock::now();
+        continue;
+      }
+      status_.real_time_factor = 0;
+      busy_ = false;
+      idle_.notify_all();
+      wake_.wait(lock, [this] { return stop_ || !queue_.empty(); });
+      continue;
+    }
+    bool tick = false;
+    if (playing && options_.real_time) {
+      const auto now = Clock::now();
+      if (!paced) {
+        paced = true;
+        next_frame = now;
+      }
+      if (now >= next_frame) {
+        tick = true;
+        const double fps = core_.model().solver.fps * options_.speed;
+        const auto period =
+            std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / fps));
+        // A frame that took longer than its period is not made up for with a burst of frames.
+        next_frame = std::max(next_frame + period, now);
+      } else if (!has_command) {
+        wake_.wait_until(lock, next_frame);
+        continue;
+      }
+    } else if (playing) {
+      tick = !has_command || !ticked_last;
+    }
+    JournalEntry entry = Tick{};
+    if (!tick) {
+      entry = std::move(queue_.front());
+      queue_.pop_front();
+    }
+    ticked_last = tick;
+    busy_ = true;
+    lock.unlock();
+    bool stepped = false;
+    if (const Command* command = std::get_if<Command>(&entry)) {
+      core_.apply(*command);
+    } else {
+      stepped = core_.tick();
+    }
+    snapshot_stale = true;
+    const auto now = Clock::now();
+    if (now - last_snapshot >= kSnapshotInterval) {
+      publish_snapshot();
+      snapshot_stale = false;
+      last_snapshot = now;
+    }
+    RunnerStatus status = make_status();
+    if (stepped) {
+      simulated += 1.0 / core_.model().solver.fps;
+      rate.emplace_back(now, simulated);
+      while (rate.size() > 2 && now - rate[1].first >= std::chrono::seconds(1)) rate.pop_front();
+    }
+    if (rate.size() >= 2) {
+      const double wall =
+          std::chrono::duration<double>(rate.back().first - rate.front().first).count();
+      if (wall > 0) status.real_time_factor = (rate.back().second - rate.front().second) / wall;
+    }
+    lock.lock();
+    if (options_.keep_journal) journal_.push_back(std::move(entry));
+    status_ = std::move(status);
+  }
+  busy_ = false;
+  idle_.notify_all();
+}
+
+}  // namespace pbm
