@@ -28,12 +28,15 @@
 
 namespace pbm {
 
-struct Play {};
+struct Play {};  // refused at last_frame()
 struct Pause {};
-struct StepFrame {};   // one frame forward, then paused
-struct Seek {          // to a frame in [0, last_frame()]: cached states are restored exactly,
-  int frame = 0;       // others re-simulated from the nearest cached frame before them; a mouse
-};                     // spring being dragged is released first (as by SpringEnd)
+struct StepFrame {};  // one frame forward, then paused
+// To a frame in [0, last_frame()]: cached states are restored exactly, others re-simulated from
+// the nearest cached frame before them. A mouse spring being dragged is released first (as by
+// SpringEnd), so that a drag never reaches back before the time it was made.
+struct Seek {
+  int frame = 0;
+};
 struct ResetToStart {  // seek to frame 0 and pause
 };
 // Replace the value at an RFC 6901 pointer of the scene's JSON (scene_to_json) with `value_json`,
@@ -50,10 +53,10 @@ struct EditScene {
 // The mouse spring of sec. 6.4, recorded into the scene as it is applied so that playback (and
 // a saved file) reproduce it: begin adds a SpringDef from `node` of `body` to `target`, with a
 // stiffness ramped in over kSpringRampSeconds, a damping and a force limit sized on the body's
-// mass and the time step (mouse_spring_parameters), and three `springs[i].target[k]` tracks with
-// step interpolation. Move adds a key at the current time (or replaces the key there); End sets
-// t_end to the current time. Each drops the cached frames after the current one. A Begin while
-// another spring is dragged ends that one first.
+// mass, its damping and the time step (mouse_spring_parameters), and three `springs[i].target[k]`
+// tracks with step interpolation. Move adds a key at the current time (or replaces the key there);
+// End sets t_end to the current time. Each drops the cached frames after the current one. A Begin
+// while another spring is dragged ends that one first.
 struct SpringBegin {
   int body = 0;
   int node = 0;
@@ -86,7 +89,8 @@ class RunnerCore {
   RunnerCore(const RunnerCore&) = delete;
   RunnerCore& operator=(const RunnerCore&) = delete;
 
-  // Applies a command; returns "" or why it was refused (nothing changed then).
+  // Applies a command; returns "" or why it was refused (nothing changed then). A frame that
+  // fails to compute is not a refusal: the run pauses before it and message() says why.
   std::string apply(const Command& command);
   // While playing, steps one frame and returns true; pauses at last_frame() or on a failed
   // frame (message() says why) and returns false.
