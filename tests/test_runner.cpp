@@ -351,22 +351,21 @@ TEST(MouseSpring, DragPullsTheBodyAndThePlaybackReproducesIt) {
   EXPECT_NE(hash_state(playback.state()), hash_state(free.state()));
 }
 
-// A ball flying at 3 m/s through free space, grabbed by a node with the target 20 m ahead. The
-// frame has seven Euler substeps of h = 1/210 s; the first sees the spring at t_begin, where the
-// ramp is 0, so only the damper acts (against the node's motion); from the second on, the ramped
-// stiffness times 20 m is past max_force. Clamped, the frame adds at most max_force / fps of
-// momentum, and about 6/7 of it; unclamped, the ramp alone would add over three times that.
-// (Flying, not at rest: from rest the stability guard's energy floor, which counts a spring's
-// stored energy at the frame's start, where the ramp is 0, refuses the frame.)
+// A ball at rest in free space, grabbed by a node with the target 20 m away. The frame has
+// seven Euler substeps of h = 1/210 s; the first sees the spring at t_begin, where the ramp is 0,
+// so nothing acts; from the second on, the ramped stiffness times 20 m is past max_force.
+// Clamped, the frame adds at most max_force / fps of momentum, and about 6/7 of it; unclamped,
+// the ramp alone would add over three times that. From rest also checks that the stability
+// guard counts the ramp's stiffness at the frame's end (at its start it is 0, and the frame
+// would be refused as energy growth from nothing).
 TEST(MouseSpring, FirstFramePullNeverExceedsMaxForce) {
   BodyDef body = test::ball(DeformLevel::local, 6);
-  body.velocity = Vec3(3, 0, 0);
   Scene scene = test::free_space(body);
   scene.solver.dt = 0.005;
   scene.solver.fps = 30;
   RunnerCore core(scene);
   const Vec3 p0 = linear_momentum(core.model(), core.state());
-  EXPECT_NEAR(p0.x(), 30, 1e-9);
+  EXPECT_LT(p0.norm(), 1e-12);
   const Vec3 target = node_position(core, 0) + Vec3(20, 0, 0);
   EXPECT_EQ(core.apply(SpringBegin{0, 0, target}), "");
   const MouseSpringParameters p = mouse_spring_parameters(core.model(), 0);

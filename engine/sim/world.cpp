@@ -283,10 +283,15 @@ FrameResult advance_frame(const Model& model, State& state, Workspace& ws) {
   Real floor = 0;
   for (const BodyModel& body : model.bodies)
     floor += body.mass * (ws.drive.gravity.norm() + 1.0) * 1e-2;
+  // A spring ramped in (a studio drag) has no stiffness at the frame's start: count the larger
+  // of its stiffnesses at the two ends, or grabbing a body at rest trips the guard.
+  Drive end_drive;
+  if (!model.springs.empty()) evaluate_drive(model, t_end, end_drive);
   for (std::size_t s = 0; s < model.springs.size(); ++s) {
     const SpringModel& sp = model.springs[s];
     const Vec3 d = ws.drive.spring_target[s] - ws.bodies[sp.body].x[sp.node];
-    floor += ws.drive.spring_stiffness[s] * d.squaredNorm();
+    const Real k = std::max(ws.drive.spring_stiffness[s], end_drive.spring_stiffness[s]);
+    floor += k * d.squaredNorm();
   }
   const State start = state;
   ws.stage_seconds.fill(0);

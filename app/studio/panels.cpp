@@ -1,0 +1,396 @@
+#include "panels.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "scene/scene_json.h"
+
+namespace pbm {
+
+using json = nlohmann::json;
+
+namespace {
+
+// Field errors of the inspector, kept until that field is edited successfully.
+std::map<std::string, std::string>& field_errors() {
+  static std::map<std::string, std::string> errors;
+  return errors;
+}
+
+void commit(StudioActions& actions, Studio& studio, const std::string& pointer, const json& value,
+            const std::string& label) {
+  const std::string error = actions.edit(pointer, value, label);
+  if (error.empty()) {
+    field_errors().erase(pointer);
+    studio.last_edited_pointer = pointer;
+  } else {
+    field_errors()[pointer] = error;
+  }
+}
+
+void label_with_info(const char* label, const std::string& pointer) {
+  const FieldInfo info = describe_field(pointer);
+  ImGui::TextUnformatted(label);
+  if (!info.range.empty()) {
+    ImGui::SameLine();
+    ImGui::TextDisabled("%s", info.range.c_str());
+  }
+  if (!info.description.empty() && ImGui::IsItemHovered()) {
+    ImGui::SetTooltip("%s", info.description.c_str());
+  }
+}
+
+bool is_number_array(const json& v) {
+  if (!v.is_array() || v.empty() || v.size() > 4) return false;
+  return std::all_of(v.begin(), v.end(), [](const json& x) { return x.is_number(); });
+}
+
+// One field of the inspector: numbers, strings, booleans, enums and short number arrays are
+// edited in place; objects and other arrays open as trees.
+void field(Studio& studio, StudioActions& actions, const std::string& key, const json& value,
+           const std::string& pointer) {
+  ImGui::PushID(pointer.c_str());
+  const FieldInfo info = describe_field(pointer);
+  if (value.is_object() || (value.is_array() && !is_number_array(value))) {
+    if (ImGui::TreeNode(key.c_str())) {
+      if (value.is_object()) {
+        for (const auto& [k, v] : value.items()) field(studio, actions, k, v, pointer + "/" + k);
+      } else {
+        for (std::size_t i = 0; i < value.size(); ++i) {
+          field(studio, actions, std::to_string(i), value[i], pointer + "/" + std::to_string(i));
+        }
+      }
+      ImGui::TreePop();
+    }
+    ImGui::PopID();
+    return;
+  }
+  label_with_info(key.c_str(), pointer);
+  ImGui::SameLine(170);
+  ImGui::SetNextItemWidth(-1);
+  if (!info.choices.empty() && value.is_string()) {
+    const std::string current = value.get<std::string>();
+    if (ImGui::BeginCombo("##v", current.c_str())) {
+      for (const std::string& choice : info.choices) {
+        if (ImGui::Selectable(choice.c_str(), choice == current) && choice != current) {
+          commit(actions, studio, pointer, choice, key);
+        }
+      }
+      ImGui::EndCombo();
+    }
+  } else if (value.is_boolean()) {
+    bool b = value.get<bool>();
+    if (ImGui::Checkbox("##v", &b)) commit(actions, studio, pointer, b, key);
+  } else if (value.is_number()) {
+    double x = value.get<double>();
+    ImGui::InputDouble("##v", &x, 0.0, 0.0, "%.6g");
+    if (ImGui::IsItemDeactivatedAfterEdit()) {
+      if (value.is_number_integer() && std::floor(x) == x) {
+        commit(actions, studio, pointer, static_cast<long long>(x), key);
+      } else {
+        commit(actions, studio, pointer, x, key);
+      }
+    }
+  } else if (is_number_array(value)) {
+    double xs[4] = {};
+    for (std::size_t i = 0; i < value.size(); ++i) xs[i] = value[i].get<double>();
+    ImGui::InputScalarN("##v", ImGuiDataType_Double, xs, static_cast<int>(value.size()), nullptr,
+                        nullptr, "%.4g");
+    if (ImGui::IsItemDeactivatedAfterEdit()) {
+      json a = json::array();
+      for (std::size_t i = 0; i < value.size(); ++i) a.push_back(xs[i]);
+      commit(actions, studio, pointer, a, key);
+    }
+  } else if (value.is_string()) {
+    char buffer[256];
+    std::snprintf(buffer, sizeof(buffer), "%s", value.get<std::string>().c_str());
+    ImGui::InputText("##v", buffer, sizeof(buffer));
+    if (ImGui::IsItemDeactivatedAfterEdit())
+      commit(actions, studio, pointer, std::string(buffer), key);
+  } else {
+    ImGui::TextUnformatted(value.dump().c_str());
+  }
+  const auto error = field_errors().find(pointer);
+  if (error != field_errors().end()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 0.4f, 1.0f));
+    ImGui::TextWrapped("%s", error->second.c_str());
+    ImGui::PopStyleColor();
+  }
+  ImGui::PopID();
+}
+
+const char* const kCollections[] = {"bodies", "obstacles", "springs", "tracks"};
+const SelectionKind kKinds[] = {SelectionKind::body, SelectionKind::obstacle, SelectionKind::spring,
+                                SelectionKind::track};
+
+std::string selection_pointer(const Selection& s) {
+  switch (s.kind) {
+    case SelectionKind::body:
+      return "/bodies/" + std::to_string(s.index);
+    case SelectionKind::obstacle:
+      return "/obstacles/" + std::to_string(s.index);
+    case SelectionKind::spring:
+      return "/springs/" + std::to_string(s.index);
+    case SelectionKind::track:
+      return "/tracks/" + std::to_string(s.index);
+    case SelectionKind::solver:
+      return "/solver";
+    case SelectionKind::scene:
+      return "";
+    case SelectionKind::none:
+      break;
+  }
+  return "-";
+}
+
+void outliner(Studio& studio, StudioActions& actions, const json& scene) {
+  if (ImGui::Selectable("Scene (gravity, camera)", studio.selection.kind == SelectionKind::scene)) {
+    studio.selection = {SelectionKind::scene, -1};
+  }
+  if (ImGui::Selectable("Solver", studio.selection.kind == SelectionKind::solver)) {
+    studio.selection = {SelectionKind::solver, -1};
+  }
+  for (int c = 0; c < 4; ++c) {
+    const char* collection = kCollections[c];
+    const json items = scene.contains(collection) ? scene[collection] : json::array();
+    ImGui::SetNextItemOpen(true, ImGuiCond_Once);
+    if (!ImGui::TreeNode(collection)) continue;
+    for (int i = 0; i < static_cast<int>(items.size()); ++i) {
+      const json& item = items[i];
+      std::string name = item.contains("name")     ? item["name"].get<std::string>()
+                         : item.contains("target") ? item["target"].get<std::string>()
+                                                   : std::to_string(i);
+      ImGui::PushID(c * 100000 + i);
+      const bool selected = studio.selection.kind == kKinds[c] && studio.selection.index == i;
+      if (ImGui::Selectable(name.c_str(), selected, 0,
+                            ImVec2(ImGui::GetContentRegionAvail().x - 24, 0))) {
+        studio.selection = {kKinds[c], i};
+      }
+      ImGui::SameLine();
+      // Bodies need one at least (the parser says so if it is the last).
+      if (ImGui::SmallButton("x")) {
+        json without = items;
+        without.erase(without.begin() + i);
+        const std::string error =
+            actions.edit(std::string("/") + collection, without, "delete " + name);
+        if (error.empty()) {
+          studio.selection = {};
+        } else {
+          studio.message = error;
+        }
+      }
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("delete");
+      ImGui::PopID();
+    }
+    if (c == 0) {
+      if (ImGui::BeginCombo("##add", "add a body...")) {
+        for (const std::string& preset : body_preset_names()) {
+          if (ImGui::Selectable(preset.c_str())) {
+            json with = items;
+            const double x = 3.0 * static_cast<double>(items.size());
+            with.push_back(
+                body_preset(preset, preset + std::to_string(items.size()), Vec3(x, 0, 3)));
+            const std::string error = actions.edit("/bodies", with, "add " + preset);
+            if (error.empty()) {
+              studio.selection = {SelectionKind::body, static_cast<int>(items.size())};
+            } else {
+              studio.message = error;
+            }
+          }
+        }
+        ImGui::EndCombo();
+      }
+    }
+    ImGui::TreePop();
+  }
+}
+
+void inspector(Studio& studio, StudioActions& actions, const json& scene) {
+  const std::string pointer = selection_pointer(studio.selection);
+  if (pointer == "-") {
+    ImGui::TextDisabled("Select an item in the outliner, or click a body in the viewport.");
+    return;
+  }
+  json value;
+  try {
+    value = pointer.empty() ? scene : scene.at(json::json_pointer(pointer));
+  } catch (const json::exception&) {
+    studio.selection = {};
+    return;
+  }
+  if (pointer.empty()) {  // the scene's own fields, not its collections
+    for (const char* key : {"name", "gravity", "camera"}) {
+      if (value.contains(key)) field(studio, actions, key, value[key], std::string("/") + key);
+    }
+    if (!value.contains("camera") && ImGui::Button("add a scene camera")) {
+      json camera = {
+          {"position", {6, -8, 4}}, {"target", {0, 0, 0}}, {"up", {0, 0, 1}}, {"fov", 40}};
+      json whole = scene;
+      whole["camera"] = camera;
+      const std::string error = actions.edit("", whole, "add camera");
+      if (!error.empty()) studio.message = error;
+    }
+    return;
+  }
+  for (const auto& [k, v] : value.items()) field(studio, actions, k, v, pointer + "/" + k);
+}
+
+void transport(Studio& studio) {
+  Runner& runner = *studio.runner;
+  const RunnerStatus& s = studio.status;
+  if (ImGui::Button(s.playing ? "Pause" : "Play")) {
+    runner.post(s.playing ? Command(Pause{}) : Command(Play{}));
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Step")) runner.post(StepFrame{});
+  ImGui::SameLine();
+  if (ImGui::Button("Reset")) runner.post(ResetToStart{});
+  float speed = static_cast<float>(studio.speed);
+  ImGui::SetNextItemWidth(160);
+  if (ImGui::SliderFloat("speed", &speed, 0.05f, 4.0f, "%.2fx", ImGuiSliderFlags_Logarithmic)) {
+    studio.speed = speed;
+    runner.set_speed(speed);
+  }
+  ImGui::Text("real-time factor %.2f", s.real_time_factor);
+  if (s.scene) {
+    const SolverDef& solver = s.scene->solver;
+    const int substeps = static_cast<int>(std::ceil(1.0 / (solver.fps * solver.dt) - 1e-9));
+    ImGui::Text("dt %.4g s, %d substeps a frame at %.4g fps", solver.dt, substeps, solver.fps);
+    ImGui::Text("last frame: %d substeps, %d retries", s.stats.substeps, s.stats.retries);
+  }
+}
+
+void timeline(Studio& studio, StudioActions& actions, const json& scene) {
+  const RunnerStatus& s = studio.status;
+  const double fps = s.scene ? s.scene->solver.fps : 30.0;
+  int frame = s.frame;
+  ImGui::SetNextItemWidth(-1);
+  const ImVec2 slider_min = ImGui::GetCursorScreenPos();
+  const float width = ImGui::GetContentRegionAvail().x;
+  // Cached ranges shaded under the slider, keyframes of the selected track as ticks above it.
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const float h = ImGui::GetFrameHeight();
+  auto x_of = [&](double f) {
+    return slider_min.x + width * static_cast<float>(f / std::max(1, s.last_frame));
+  };
+  for (const auto& [a, b] : s.cached) {
+    draw->AddRectFilled(ImVec2(x_of(a), slider_min.y + h - 4),
+                        ImVec2(x_of(b + 1), slider_min.y + h), IM_COL32(90, 200, 120, 255));
+  }
+  if (studio.selection.kind == SelectionKind::track && scene.contains("tracks") &&
+      studio.selection.index < static_cast<int>(scene["tracks"].size())) {
+    for (const json& key : scene["tracks"][studio.selection.index]["keys"]) {
+      const float x = x_of(key[0].get<double>() * fps);
+      draw->AddTriangleFilled(ImVec2(x - 4, slider_min.y), ImVec2(x + 4, slider_min.y),
+                              ImVec2(x, slider_min.y + 6), IM_COL32(255, 210, 60, 255));
+    }
+  }
+  if (ImGui::SliderInt("##frame", &frame, 0, s.last_frame, "frame %d")) {
+    studio.runner->post(Seek{frame});
+  }
+  ImGui::Text("t = %.3f s of %.3f s", s.frame / fps, s.last_frame / fps);
+  const std::string target =
+      s.scene ? track_target_for(*s.scene, studio.last_edited_pointer) : std::string();
+  if (target.empty()) {
+    ImGui::TextDisabled("edit a keyframable field (q_s rest, gravity, spring, camera) to key it");
+    return;
+  }
+  ImGui::Text("field %s", target.c_str());
+  const double time = s.frame / fps;
+  json value;
+  try {
+    value = scene.at(json::json_pointer(studio.last_edited_pointer));
+  } catch (const json::exception&) {
+    return;
+  }
+  const json tracks = scene.contains("tracks") ? scene["tracks"] : json::array();
+  if (ImGui::Button("Set key") && value.is_number()) {
+    const std::string error = actions.edit(
+        "/tracks", tracks_with_key(tracks, target, time, value.get<double>()), "key " + target);
+    if (!error.empty()) studio.message = error;
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Delete key")) {
+    const std::string error =
+        actions.edit("/tracks", tracks_without_key(tracks, target, time), "delete key " + target);
+    if (!error.empty()) studio.message = error;
+  }
+}
+
+void stats(Studio& studio) {
+  const FrameStats& f = studio.status.stats;
+  double total = 0;
+  for (int k = 0; k < static_cast<int>(StepStage::count); ++k) {
+    ImGui::Text("%-15s %8.3f ms", stage_name(static_cast<StepStage>(k)), 1e3 * f.stage_seconds[k]);
+    total += f.stage_seconds[k];
+  }
+  ImGui::Text("%-15s %8.3f ms", "step total", 1e3 * total);
+  ImGui::Text("kinetic %.4g J  elastic %.4g J  potential %.4g J", f.kinetic, f.elastic,
+              f.potential);
+  ImGui::Text("min obstacle distance %.4g m, %d contacts",
+              f.min_distance > 1e299 ? 0.0 : f.min_distance, f.contacts);
+  std::vector<float> kinetic, elastic, distance, cost;
+  for (const StatsSample& p : studio.plot) {
+    kinetic.push_back(p.kinetic);
+    elastic.push_back(p.elastic);
+    distance.push_back(p.min_distance);
+    float ms = 0;
+    for (float x : p.step_ms) ms += x;
+    cost.push_back(ms);
+  }
+  const ImVec2 size(ImGui::GetContentRegionAvail().x, 40);
+  if (!kinetic.empty()) {
+    ImGui::PlotLines("##k", kinetic.data(), static_cast<int>(kinetic.size()), 0, "kinetic [J]",
+                     FLT_MAX, FLT_MAX, size);
+    ImGui::PlotLines("##e", elastic.data(), static_cast<int>(elastic.size()), 0, "elastic [J]",
+                     FLT_MAX, FLT_MAX, size);
+    ImGui::PlotLines("##d", distance.data(), static_cast<int>(distance.size()), 0,
+                     "min distance [m]", FLT_MAX, FLT_MAX, size);
+    ImGui::PlotLines("##c", cost.data(), static_cast<int>(cost.size()), 0, "step [ms]", FLT_MAX,
+                     FLT_MAX, size);
+  }
+}
+
+}  // namespace
+
+void draw_panels(Studio& studio, StudioActions& actions, float width, float height) {
+  json scene =
+      studio.status.scene ? json::parse(scene_to_json(*studio.status.scene)) : json::object();
+  const float side = 340, bottom = 150;
+  ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(side, (height - bottom) * 0.45f), ImGuiCond_Always);
+  ImGui::Begin("Outliner", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
+  outliner(studio, actions, scene);
+  ImGui::End();
+  ImGui::SetNextWindowPos(ImVec2(0, (height - bottom) * 0.45f), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(side, (height - bottom) * 0.55f), ImGuiCond_Always);
+  ImGui::Begin("Inspector", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
+  inspector(studio, actions, scene);
+  ImGui::End();
+  ImGui::SetNextWindowPos(ImVec2(0, height - bottom), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(side, bottom), ImGuiCond_Always);
+  ImGui::Begin("Transport", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
+  transport(studio);
+  ImGui::End();
+  ImGui::SetNextWindowPos(ImVec2(side, height - bottom), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(width - side - 300, bottom), ImGuiCond_Always);
+  ImGui::Begin("Timeline", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
+  timeline(studio, actions, scene);
+  if (!studio.message.empty()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 0.4f, 1.0f));
+    ImGui::TextWrapped("%s", studio.message.c_str());
+    ImGui::PopStyleColor();
+  }
+  ImGui::End();
+  ImGui::SetNextWindowPos(ImVec2(width - 300, height - bottom - 260), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(300, bottom + 260), ImGuiCond_Always);
+  ImGui::Begin("Stats", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
+  stats(studio);
+  ImGui::End();
+}
+
+}  // namespace pbm

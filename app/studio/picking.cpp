@@ -1,0 +1,56 @@
+#include "picking.h"
+
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+namespace pbm {
+
+using Vec3f = Eigen::Vector3f;
+
+Ray pixel_ray(const Camera& camera, float x, float y, int width, int height) {
+  const Vec3f forward = (camera.target - camera.position).normalized();
+  const Vec3f right = forward.cross(camera.up).normalized();
+  const Vec3f up = right.cross(forward);
+  const float tan_half = std::tan(0.5f * camera.fov * 3.14159265f / 180.0f);
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  const float ndc_x = 2.0f * x / static_cast<float>(width) - 1.0f;
+  const float ndc_y = 1.0f - 2.0f * y / static_cast<float>(height);
+  const Vec3f d = forward + right * (ndc_x * tan_half * aspect) + up * (ndc_y * tan_half);
+  return {camera.position, d.normalized()};
+}
+
+std::optional<Pick> pick_body(const Snapshot& snapshot, const Ray& ray) {
+  std::optional<Pick> best;
+  for (std::size_t b = 0; b < snapshot.bodies.size(); ++b) {
+    const BodySnapshot& body = snapshot.bodies[b];
+    for (const std::array<int, 3>& t : body.triangles) {
+      const Vec3f& p0 = body.positions[t[0]];
+      const Vec3f e1 = body.positions[t[1]] - p0, e2 = body.positions[t[2]] - p0;
+      const Vec3f h = ray.direction.cross(e2);
+      const float det = e1.dot(h);
+      if (std::abs(det) < 1e-12f) continue;
+      const Vec3f s = ray.origin - p0;
+      const float u = s.dot(h) / det;
+      if (u < 0 || u > 1) continue;
+      const Vec3f q = s.cross(e1);
+      const float v = ray.direction.dot(q) / det;
+      if (v < 0 || u + v > 1) continue;
+      const float distance = e2.dot(q) / det;
+      if (distance <= 0 || (best && distance >= best->distance)) continue;
+      const float w[3] = {1 - u - v, u, v};
+      const int corner = w[0] >= w[1] && w[0] >= w[2] ? 0 : (w[1] >= w[2] ? 1 : 2);
+      best = Pick{static_cast<int>(b), t[corner], ray.origin + distance * ray.direction, distance};
+    }
+  }
+  return best;
+}
+
+Vec3f drag_target(const Camera& camera, const Ray& ray, const Vec3f& point) {
+  const Vec3f normal = (camera.target - camera.position).normalized();
+  const float denom = ray.direction.dot(normal);
+  if (std::abs(denom) < 1e-6f) return point;
+  return ray.origin + ray.direction * ((point - ray.origin).dot(normal) / denom);
+}
+
+}  // namespace pbm

@@ -1,0 +1,36 @@
+// Mouse picking in the viewport: a ray through a pixel against every body triangle of a
+// Snapshot, and the drag plane of the mouse spring (sec. 6.4).
+#pragma once
+
+#include <optional>
+
+#include <Eigen/Core>
+
+#include "camera.h"
+#include "sim/snapshot.h"
+
+namespace pbm {
+
+struct Ray {
+  Eigen::Vector3f origin, direction;  // direction unit
+};
+
+// The ray from `camera` through pixel (x, y) of a width x height image (y down, pixel centres at
+// +0.5).
+Ray pixel_ray(const Camera& camera, float x, float y, int width, int height);
+
+struct Pick {
+  int body = -1;
+  int node = -1;          // the hit triangle's corner nearest to the hit
+  Eigen::Vector3f point;  // world hit point
+  float distance = 0;     // along the ray
+};
+
+// The nearest hit of the ray on any body's surface (Moller-Trumbore), if any.
+std::optional<Pick> pick_body(const Snapshot& snapshot, const Ray& ray);
+
+// Where the ray meets the plane through `point` facing the camera (normal = view direction):
+// the mouse spring's target while dragging.
+Eigen::Vector3f drag_target(const Camera& camera, const Ray& ray, const Eigen::Vector3f& point);
+
+}  // namespace pbm

@@ -1,0 +1,61 @@
+// The studio's shared state (UI thread only): the document's runner, its history, selection,
+// camera and what the panels show. MainWindow owns it; the viewport and the panels use it.
+#pragma once
+
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "camera.h"
+#include "scene_document.h"
+#include "sim/runner.h"
+
+namespace pbm {
+
+enum class SelectionKind { none, body, obstacle, spring, track, solver, scene };
+struct Selection {
+  SelectionKind kind = SelectionKind::none;
+  int index = -1;
+};
+
+// One point of the Stats panel's plots (per computed frame shown).
+struct StatsSample {
+  int frame = 0;
+  float kinetic = 0, elastic = 0, min_distance = 0;
+  float step_ms[static_cast<int>(StepStage::count)] = {};
+};
+
+// What the UI asks of the window around it (files, history): the panels call these.
+class StudioActions {
+ public:
+  virtual ~StudioActions() = default;
+  // Validates and posts an edit; records it for undo. Returns "" or the validator's message.
+  virtual std::string edit(const std::string& pointer, const nlohmann::json& value,
+                           const std::string& label) = 0;
+  virtual void undo() = 0;
+  virtual void redo() = 0;
+};
+
+struct Studio {
+  std::unique_ptr<Runner> runner;
+  RunnerStatus status;                       // refreshed every UI frame
+  std::shared_ptr<const Snapshot> snapshot;  // latest taken
+  EditHistory history;
+  std::string path;  // scene file ("" for a new scene)
+  std::uint64_t saved_revision = 0;
+  Selection selection;
+  std::string last_edited_pointer;  // the field under edit, for keyframes
+  Camera camera;
+  bool use_scene_camera = true;
+  bool camera_initialized = false;
+  bool wireframe = false;
+  int samples = 2;  // viewport MSAA: llvmpipe pays per sample
+  double speed = 1.0;
+  std::deque<StatsSample> plot;  // the last seconds
+  int last_plotted_frame = -1;
+  std::string message;  // last error shown in the status line
+  bool dirty() const { return status.scene_revision != saved_revision; }
+};
+
+}  // namespace pbm

@@ -1,0 +1,203 @@
+// pbm-studio [scene]: the editor. pbm-studio --smoke <scene> --frames N [--drag x0,y0:x1,y1]
+// --screenshot out.png [--report out.json]: opens the real window (under Xvfb in CI), steps N
+// frames through the real Runner and UI path, performs the drag in window pixels, saves a
+// screenshot and the bodies' centres, and exits 0.
+#include <QApplication>
+#include <QMouseEvent>
+#include <QSurfaceFormat>
+#include <QTimer>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <optional>
+
+#include <nlohmann/json.hpp>
+
+#include "main_window.h"
+#include "viewport.h"
+
+namespace {
+
+struct SmokeOptions {
+  QString scene, screenshot, report;
+  int frames = 0;
+  std::optional<QLineF> drag;
+};
+
+int usage(const char* why) {
+  std::cerr << "error: " << why
+            << "\nusage: pbm-studio [scene.json]\n"
+               "       pbm-studio --smoke <scene.json> --frames N [--drag x0,y0:x1,y1] "
+               "--screenshot out.png [--report out.json]\n";
+  return 2;
+}
+
+// Drives the window frame by frame: step, wait for the runner to show it, move the mouse.
+class SmokeRun : public QObject {
+ public:
+  SmokeRun(pbm::MainWindow& window, SmokeOptions options)
+      : window_(window), options_(std::move(options)) {
+    connect(&timer_, &QTimer::timeout, this, [this] { tick(); });
+    timer_.start(1);
+  }
+  int result() const { return result_; }
+
+ private:
+  void send(QEvent::Type type, QPointF window_point, Qt::MouseButton button,
+            Qt::MouseButtons buttons) {
+    pbm::Viewport* viewport = window_.viewport();
+    const QPointF local = viewport->mapFrom(&window_, window_point.toPoint());
+    QMouseEvent event(type, local, viewport->mapToGlobal(local), button, buttons,
+                      Qt::ControlModifier);
+    QApplication::sendEvent(viewport, &event);
+  }
+
+  void tick() {
+    pbm::Studio& studio = window_.studio();
+    if (!studio.runner) return fail("no scene");
+    window_.viewport()->refresh();
+    const pbm::RunnerStatus& s = studio.status;
+    // A frame the runner could not compute leaves it paused short of the request, saying why.
+    if (!s.message.empty() && s.frame < requested_ && !s.playing && waited_ > 50) {
+      return fail(s.message);
+    }
+    if (s.frame != requested_ || s.playing) {  // the runner is still on it
+      ++waited_;
+      return;
+    }
+    waited_ = 0;
+    if (requested_ >= options_.frames || requested_ >= s.last_frame) return finish();
+    if (options_.drag) {
+      const int begin = options_.frames / 4, end = (3 * options_.frames) / 4;
+      const QLineF& d = *options_.drag;
+      if (requested_ == begin) {
+        send(QEvent::MouseButtonPress, d.p1(), Qt::LeftButton, Qt::LeftButton);
+      } else if (requested_ > begin && requested_ < end) {
+        const double f = static_cast<double>(requested_ - begin) / (end - begin);
+        send(QEvent::MouseMove, d.pointAt(f), Qt::NoButton, Qt::LeftButton);
+      } else if (requested_ == end) {
+        send(QEvent::MouseMove, d.p2(), Qt::NoButton, Qt::LeftButton);
+        send(QEvent::MouseButtonRelease, d.p2(), Qt::LeftButton, Qt::NoButton);
+      }
+    }
+    window_.viewport()->repaint();
+    studio.runner->post(pbm::StepFrame{});
+    ++requested_;
+  }
+
+  void fail(const std::string& why) {
+    std::cerr << "error: smoke run: " << why << "\n";
+    result_ = 1;
+    timer_.stop();
+    QApplication::exit(1);
+  }
+
+  void finish() {
+    timer_.stop();
+    window_.viewport()->repaint();
+    const QImage image = window_.grab().toImage();
+    if (image.isNull() || !image.save(options_.screenshot)) {
+      return fail("cannot write the screenshot " + options_.screenshot.toStdString());
+    }
+    if (!options_.report.isEmpty()) {
+      nlohmann::json report = {{"frame", window_.studio().status.frame},
+                               {"bodies", nlohmann::json::array()}};
+      if (const auto& snap = window_.studio().snapshot) {
+        for (const pbm::BodySnapshot& body : snap->bodies) {
+          Eigen::Vector3f c = Eigen::Vector3f::Zero();
+          for (const Eigen::Vector3f& p : body.positions) c += p;
+          c /= static_cast<float>(std::max<std::size_t>(1, body.positions.size()));
+          report["bodies"].push_back({{"name", body.name}, {"center", {c.x(), c.y(), c.z()}}});
+        }
+      }
+      std::ofstream(options_.report.toStdString()) << report.dump(2) << "\n";
+    }
+    std::cout << "smoke: " << window_.studio().status.frame << " frames, screenshot "
+              << options_.screenshot.toStdString() << " (" << image.width() << "x" << image.height()
+              << ")\n";
+    result_ = 0;
+    QApplication::exit(0);
+  }
+
+  pbm::MainWindow& window_;
+  SmokeOptions options_;
+  QTimer timer_;
+  int requested_ = 0;
+  int waited_ = 0;  // ticks since the last step was posted
+  int result_ = 1;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  QSurfaceFormat format;
+  format.setVersion(3, 3);
+  format.setProfile(QSurfaceFormat::CoreProfile);
+  format.setDepthBufferSize(24);
+  QSurfaceFormat::setDefaultFormat(format);
+  QApplication app(argc, argv);
+  QApplication::setApplicationName("pbm-studio");
+  QApplication::setOrganizationName("pbm");
+
+  const QStringList args = QApplication::arguments();
+  std::optional<SmokeOptions> smoke;
+  QString scene;
+  for (int i = 1; i < args.size(); ++i) {
+    const QString& a = args[i];
+    auto value = [&](const char* what) -> std::optional<QString> {
+      if (i + 1 >= args.size()) return std::nullopt;
+      (void)what;
+      return args[++i];
+    };
+    if (a == "--smoke") {
+      smoke.emplace();
+      auto v = value("scene");
+      if (!v) return usage("--smoke needs a scene file");
+      smoke->scene = *v;
+    } else if (a == "--frames" && smoke) {
+      auto v = value("frames");
+      bool ok = false;
+      smoke->frames = v ? v->toInt(&ok) : 0;
+      if (!ok || smoke->frames < 1) return usage("--frames needs a positive integer");
+    } else if (a == "--drag" && smoke) {
+      auto v = value("drag");
+      const QStringList ends = v ? v->split(':') : QStringList();
+      const QStringList p0 = ends.size() == 2 ? ends[0].split(',') : QStringList();
+      const QStringList p1 = ends.size() == 2 ? ends[1].split(',') : QStringList();
+      if (p0.size() != 2 || p1.size() != 2) return usage("--drag needs x0,y0:x1,y1");
+      smoke->drag = QLineF(p0[0].toDouble(), p0[1].toDouble(), p1[0].toDouble(), p1[1].toDouble());
+    } else if (a == "--screenshot" && smoke) {
+      auto v = value("screenshot");
+      if (!v) return usage("--screenshot needs a file");
+      smoke->screenshot = *v;
+    } else if (a == "--report" && smoke) {
+      auto v = value("report");
+      if (!v) return usage("--report needs a file");
+      smoke->report = *v;
+    } else if (!a.startsWith("--") && scene.isEmpty()) {
+      scene = a;
+    } else {
+      return usage(("unknown argument " + a.toStdString()).c_str());
+    }
+  }
+  if (smoke && (smoke->frames < 1 || smoke->screenshot.isEmpty())) {
+    return usage("--smoke needs --frames and --screenshot");
+  }
+
+  pbm::MainWindow window(smoke.has_value());
+  window.resize(1280, 800);
+  window.show();
+  if (smoke) {
+    if (!window.open_scene(smoke->scene)) return 2;
+    SmokeRun run(window, *smoke);
+    QApplication::exec();
+    return run.result();
+  }
+  if (!scene.isEmpty()) {
+    if (!window.open_scene(scene)) window.new_scene();
+  } else {
+    window.new_scene();
+    window.offer_recovery();
+  }
+  return QApplication::exec();
+}
