@@ -212,7 +212,10 @@ std::string MainWindow::edit(const std::string& pointer, const json& value,
 
 void MainWindow::undo() {
   if (!studio_.history.can_undo() || !studio_.runner) return;
-  const SceneEdit& e = studio_.history.undo();
+  SceneEdit& e = studio_.history.undo();
+  if (e.after.is_null() && studio_.status.scene) {  // a drag: redo restores what it recorded
+    e.after = json::parse(scene_to_json(*studio_.status.scene));
+  }
   studio_.runner->post(EditScene{e.pointer, e.before.dump()});
 }
 

@@ -49,7 +49,7 @@ void EditHistory::push(SceneEdit edit) {
   edits_.push_back(std::move(edit));
   done_ = edits_.size();
 }
-const SceneEdit& EditHistory::undo() {
+SceneEdit& EditHistory::undo() {
   if (!can_undo()) throw std::logic_error("nothing to undo");
   return edits_[--done_];
 }

@@ -15,6 +15,9 @@ namespace pbm {
 
 struct SceneEdit {
   std::string pointer;  // RFC 6901, into scene_to_json(scene)
+  // A mouse drag is recorded by the runner as it happens: its entry holds the whole scene from
+  // before the drag, and `after` stays null until the drag is undone (then it is the scene from
+  // just before the undo, for redo).
   nlohmann::json before, after;
   std::string label;  // for the Edit menu ("Undo w1")
 };
@@ -34,7 +37,7 @@ class EditHistory {
   bool can_undo() const { return done_ > 0; }
   bool can_redo() const { return done_ < edits_.size(); }
   // The edit to post to undo (its `before`) or redo (its `after`); moves the cursor.
-  const SceneEdit& undo();
+  SceneEdit& undo();
   const SceneEdit& redo();
   const SceneEdit* next_undo() const { return can_undo() ? &edits_[done_ - 1] : nullptr; }
   const SceneEdit* next_redo() const { return can_redo() ? &edits_[done_] : nullptr; }

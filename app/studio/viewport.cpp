@@ -15,6 +15,7 @@
 #include "panels.h"
 #include "picking.h"
 #include "renderer.h"
+#include "scene/scene_json.h"
 
 namespace pbm {
 
@@ -210,6 +211,9 @@ void Viewport::mousePressEvent(QMouseEvent* event) {
       studio_.runner->post(SpringBegin{pick->body, pick->node, pick->point.cast<Real>()});
       studio_.selection = {SelectionKind::body, pick->body};
       drag_ = Drag::spring;
+      if (studio_.status.scene) {
+        drag_scene_before_ = nlohmann::json::parse(scene_to_json(*studio_.status.scene));
+      }
     }
     return;
   }
@@ -268,6 +272,10 @@ void Viewport::mouseReleaseEvent(QMouseEvent* event) {
   update();
   if (drag_ == Drag::spring) {
     studio_.runner->post(SpringEnd{});
+    if (!drag_scene_before_.is_null()) {
+      studio_.history.push({"", std::move(drag_scene_before_), nullptr, "drag"});
+      drag_scene_before_ = nullptr;
+    }
   } else if (drag_ == Drag::orbit && (event->position() - last_).manhattanLength() < 3 &&
              studio_.snapshot) {
     // A click without a drag selects the body under the cursor.

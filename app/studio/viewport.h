@@ -53,6 +53,7 @@ class Viewport : public QOpenGLWidget {
   enum class Drag { none, orbit, pan, spring } drag_ = Drag::none;
   QPointF last_;
   Eigen::Vector3f spring_point_ = Eigen::Vector3f::Zero();
+  nlohmann::json drag_scene_before_;  // for the drag's undo entry
 };
 
 }  // namespace pbm
