@@ -1,0 +1,531 @@
+#include "collide/body_collisions.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "collide/rigid_contact.h"
+#include "collide/triangle_geometry.h"
+#include "deform/body_dynamics.h"
+#include "sim/state.h"
+#include "sim/world.h"
+
+namespace pbm {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Scratch = BodyCollisionWorkspace::BodyScratch;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+void build_rings(const BodyModel& body, Scratch& s) {
+  s.ring.assign(static_cast<std::size_t>(body.n_nodes()), {});
+  for (int i = 0; i < body.n_nodes(); ++i) s.ring[i].push_back(i);
+  for (const std::array<int, 3>& t : body.tessellation.triangles) {
+    for (int a = 0; a < 3; ++a) {
+      for (int b = 0; b < 3; ++b) {
+        if (a != b) s.ring[t[a]].push_back(t[b]);
+      }
+    }
+  }
+  for (std::vector<int>& r : s.ring) {
+    std::sort(r.begin(), r.end());
+    r.erase(std::unique(r.begin(), r.end()), r.end());
+  }
+}
+
+bool sized_for(const Model& model, const BodyCollisionWorkspace& cws) {
+  if (cws.bodies.size() != model.bodies.size() ||
+      cws.broadphase.boxes.size() != model.bodies.size()) {
+    return false;
+  }
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    const BodyModel& body = model.bodies[b];
+    if (static_cast<int>(cws.bodies[b].ring.size()) != body.n_nodes() ||
+        cws.bodies[b].nu.size() != body.n_generalized() ||
+        cws.broadphase.boxes[b].size() != body.tessellation.triangles.size()) {
+      return false;
+    }
+  }
+  return true;
+}
+
+void size_workspace(const Model& model, BodyCollisionWorkspace& cws) {
+  if (sized_for(model, cws)) return;
+  std::vector<int> counts;
+  cws.bodies.assign(model.bodies.size(), Scratch{});
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    const BodyModel& body = model.bodies[b];
+    Scratch& s = cws.bodies[b];
+    build_rings(body, s);
+    const auto n = static_cast<std::size_t>(body.n_nodes());
+    s.x0.assign(n, Vec3::Zero());
+    s.x.assign(n, Vec3::Zero());
+    s.x_dot0.assign(n, Vec3::Zero());
+    s.x_dot.assign(n, Vec3::Zero());
+    s.normal.assign(n, Vec3::Zero());
+    s.nu.setZero(body.n_generalized());
+    s.g.setZero(body.n_generalized());
+    s.delta.setZero(body.n_generalized());
+    counts.push_back(static_cast<int>(body.tessellation.triangles.size()));
+  }
+  resize_broadphase(counts, cws.broadphase);
+}
+
+void compute_vertex_normals(const BodyModel& body, Scratch& s) {
+  std::fill(s.normal.begin(), s.normal.end(), Vec3::Zero());
+  for (const std::array<int, 3>& t : body.tessellation.triangles) {
+    // Twice the area times the outward normal (triangles are counter-clockwise from outside).
+    const Vec3 area = (s.x[t[1]] - s.x[t[0]]).cross(s.x[t[2]] - s.x[t[0]]);
+    for (int v : t) s.normal[v] += area;
+  }
+  for (Vec3& n : s.normal) {
+    const Real length = n.norm();
+    if (length > 0) n /= length;
+  }
+}
+
+// World velocity of node k of a rigid or global body from the scratch nu: R P_k nu (3.4).
+Vec3 generalized_node_velocity(const BodyModel& body, const BodyWorkspace& bw, const Scratch& s,
+                               int k) {
+  Vec3 r = s.nu.segment<3>(0) + s.nu.segment<3>(3).cross(bw.p[k]);
+  if (body.n_s > 0) r += J_times(bw, k, s.nu.data() + 6);
+  return bw.R * r;
+}
+
+// One side of a contact: a node (count 1, weight 1) or a triangle's point sum w_k x_k.
+struct Side {
+  int body = 0;
+  const int* nodes = nullptr;
+  const Real* weights = nullptr;
+  int count = 1;
+};
+
+struct Bodies {
+  const Model& model;
+  Workspace& ws;
+  BodyCollisionWorkspace& cws;
+  const BodyModel& body(const Side& side) const { return model.bodies[side.body]; }
+  BodyWorkspace& bw(const Side& side) const { return ws.bodies[side.body]; }
+  Scratch& scratch(const Side& side) const { return cws.bodies[side.body]; }
+};
+
+Vec3 side_velocity(const Bodies& all, const Side& side) {
+  const BodyModel& body = all.body(side);
+  const Scratch& s = all.scratch(side);
+  Vec3 v = Vec3::Zero();
+  for (int k = 0; k < side.count; ++k) {
+    const int i = side.nodes[k];
+    v += side.weights[k] *
+         (body.has_local ? s.x_dot[i] : generalized_node_velocity(body, all.bw(side), s, i));
+  }
+  return v;
+}
+
+Vec3 side_position(const Bodies& all, const Side& side) {
+  const BodyModel& body = all.body(side);
+  const Scratch& s = all.scratch(side);
+  Vec3 x = Vec3::Zero();
+  for (int k = 0; k < side.count; ++k) {
+    const int i = side.nodes[k];
+    x += side.weights[k] * (body.has_local ? s.x[i] : Vec3(s.x0[i] + s.shift));
+  }
+  return x;
+}
+
+// L^T J = sum w_k P_k^T R^T J into s.g (rigid and global sides).
+void generalized_impulse(const BodyModel& body, const BodyWorkspace& bw, const Side& side,
+                         const Vec3& J, Scratch& s) {
+  const Vec3 y = bw.R.transpose() * J;
+  s.g.setZero();
+  for (int k = 0; k < side.count; ++k) {
+    const int i = side.nodes[k];
+    const Real w = side.weights[k];
+    s.g.segment<3>(0) += w * y;
+    s.g.segment<3>(3) += w * bw.p[i].cross(y);
+    if (body.n_s > 0) add_Jt_y(bw, i, y, w, s.g.data() + 6);
+  }
+}
+
+// Inverse of the mass the side moves with along the unit direction d.
+Real side_inverse_mass(const Bodies& all, const Side& side, const Vec3& d) {
+  const BodyModel& body = all.body(side);
+  if (body.has_local) {
+    Real sum = 0;
+    for (int k = 0; k < side.count; ++k) {
+      sum += side.weights[k] * side.weights[k] / body.node_mass[side.nodes[k]];
+    }
+    return sum;
+  }
+  Scratch& s = all.scratch(side);
+  BodyWorkspace& bw = all.bw(side);
+  generalized_impulse(body, bw, side, d, s);
+  solve_generalized_mass(bw, s.g, s.delta);
+  return s.g.dot(s.delta);
+}
+
+void apply_impulse(const Bodies& all, const Side& side, const Vec3& J) {
+  const BodyModel& body = all.body(side);
+  Scratch& s = all.scratch(side);
+  s.touched = true;
+  if (body.has_local) {
+    for (int k = 0; k < side.count; ++k) {
+      const int i = side.nodes[k];
+      s.x_dot[i] += (side.weights[k] / body.node_mass[i]) * J;
+    }
+    return;
+  }
+  BodyWorkspace& bw = all.bw(side);
+  generalized_impulse(body, bw, side, J, s);
+  solve_generalized_mass(bw, s.g, s.delta);
+  s.nu += s.delta;
+}
+
+// Moves the side by lambda times its positional inverse mass along n (local: the nodes, each
+// by its weight over its mass; rigid and global: c, by 1 / M).
+void apply_displacement(const Bodies& all, const Side& side, Real lambda, const Vec3& n) {
+  const BodyModel& body = all.body(side);
+  Scratch& s = all.scratch(side);
+  s.touched = true;
+  if (body.has_local) {
+    for (int k = 0; k < side.count; ++k) {
+      const int i = side.nodes[k];
+      s.x[i] += (lambda * side.weights[k] / body.node_mass[i]) * n;
+    }
+  } else {
+    s.shift += (lambda / body.mass) * n;
+  }
+}
+
+Real position_inverse_mass(const Bodies& all, const Side& side) {
+  const BodyModel& body = all.body(side);
+  if (!body.has_local) return 1.0 / body.mass;
+  return side_inverse_mass(all, side, Vec3::UnitX());
+}
+
+constexpr Real kUnitWeight = 1.0;
+
+Side side_a(const BodyContact& c) {
+  return Side{c.body_a, &c.node_a, &kUnitWeight, 1};
+}
+
+Side side_b(const BodyContact& c) {
+  return Side{c.body_b, c.nodes_b.data(), c.w_b.data(), 3};
+}
+
+// Triangle t of the same body holds the node or one of its ring neighbours.
+bool adjacent(const Scratch& s, int node, const std::array<int, 3>& t) {
+  const std::vector<int>& ring = s.ring[node];
+  for (int v : t) {
+    if (std::binary_search(ring.begin(), ring.end(), v)) return true;
+  }
+  return false;
+}
+
+bool share_node(const std::array<int, 3>& a, const std::array<int, 3>& b) {
+  for (int u : a) {
+    for (int v : b) {
+      if (u == v) return true;
+    }
+  }
+  return false;
+}
+
+void make_basis(const Vec3& n, Mat3& basis) {
+  const Vec3 t1 = n.unitOrthogonal();
+  basis.col(0) = n;
+  basis.col(1) = t1;
+  basis.col(2) = n.cross(t1);
+}
+
+// Steps 1 and 2: candidate triangle pairs, their intersection test, node candidates.
+void gather_candidates(const Model& model, BodyCollisionWorkspace& cws,
+                       const BodyCollisionOptions& options, BodyCollisionStats& stats) {
+  cws.candidates.clear();
+  const int n_bodies = static_cast<int>(model.bodies.size());
+  for (int a = 0; a < n_bodies; ++a) {
+    for (int b = a; b < n_bodies; ++b) {
+      const bool self = a == b;
+      if (self && !(options.self_collision && model.bodies[a].has_local)) continue;
+      if (!self && !cws.broadphase.body_boxes[a].overlaps(cws.broadphase.body_boxes[b])) continue;
+      cws.pairs.clear();
+      collect_triangle_pairs(a, b, cws.broadphase, cws.pairs);
+      const auto& tri_a = model.bodies[a].tessellation.triangles;
+      const auto& tri_b = model.bodies[b].tessellation.triangles;
+      const Scratch& sa = cws.bodies[a];
+      const Scratch& sb = cws.bodies[b];
+      for (const std::array<int, 2>& p : cws.pairs) {
+        const std::array<int, 3>& ta = tri_a[p[0]];
+        const std::array<int, 3>& tb = tri_b[p[1]];
+        if (self && share_node(ta, tb)) continue;
+        ++stats.triangle_pairs;
+        if (triangles_intersect(sa.x[ta[0]], sa.x[ta[1]], sa.x[ta[2]], sb.x[tb[0]], sb.x[tb[1]],
+                                sb.x[tb[2]])) {
+          ++stats.intersecting_triangles;
+        }
+        for (int v : ta) {
+          if (!self || !adjacent(sa, v, tb)) cws.candidates.push_back({a, v, b, p[1]});
+        }
+        for (int v : tb) {
+          if (!self || !adjacent(sb, v, ta)) cws.candidates.push_back({b, v, a, p[0]});
+        }
+      }
+    }
+  }
+  std::sort(cws.candidates.begin(), cws.candidates.end());
+  cws.candidates.erase(std::unique(cws.candidates.begin(), cws.candidates.end()),
+                       cws.candidates.end());
+}
+
+// Step 2: each candidate node with its closest triangle point of the other body; the pairs
+// within the margin become contacts.
+void pair_nodes(const Model& model, BodyCollisionWorkspace& cws,
+                const BodyCollisionOptions& options, Real dt, BodyCollisionStats& stats) {
+  cws.contacts.clear();
+  const auto& cand = cws.candidates;
+  for (std::size_t first = 0; first < cand.size();) {
+    std::size_t last = first;
+    const int a = cand[first].body, node = cand[first].node, b = cand[first].other;
+    const Scratch& sa = cws.bodies[a];
+    const Scratch& sb = cws.bodies[b];
+    const auto& triangles = model.bodies[b].tessellation.triangles;
+    const Vec3& x = sa.x[node];
+    Real best = 1e300;
+    int best_t = -1;
+    TrianglePoint best_point;
+    for (; last < cand.size() && cand[last].body == a && cand[last].node == node &&
+           cand[last].other == b;
+         ++last) {
+      const std::array<int, 3>& t = triangles[cand[last].triangle];
+      const TrianglePoint cp = closest_point_on_triangle(x, sb.x[t[0]], sb.x[t[1]], sb.x[t[2]]);
+      ++stats.node_tests;
+      const Real d2 = (x - cp.point).squaredNorm();
+      if (d2 < best) {  // ties keep the lowest triangle index: candidates are sorted
+        best = d2;
+        best_t = cand[last].triangle;
+        best_point = cp;
+      }
+    }
+    first = last;
+    const std::array<int, 3>& t = triangles[best_t];
+    const Vec3& w = best_point.weights;
+    Vec3 n = w[0] * sb.normal[t[0]] + w[1] * sb.normal[t[1]] + w[2] * sb.normal[t[2]];
+    if (!(n.norm() > 0)) n = (sb.x[t[1]] - sb.x[t[0]]).cross(sb.x[t[2]] - sb.x[t[0]]);
+    n.normalize();
+    const Vec3 to_node = x - best_point.point;
+    Real gap = n.dot(to_node);
+    if (a == b) {
+      // Within one body both sides of a face are "outside" somewhere: the pair keeps the side
+      // it had at the step's start.
+      const Vec3 y_dot = w[0] * sb.x_dot[t[0]] + w[1] * sb.x_dot[t[1]] + w[2] * sb.x_dot[t[2]];
+      const Real before = n.dot(to_node - dt * (sa.x_dot[node] - y_dot));
+      if (before < 0) {
+        n = -n;
+        gap = -gap;
+      }
+    }
+    if (gap < -options.max_depth) continue;
+    if (gap >= 0 && std::sqrt(best) >= options.margin) continue;
+    BodyContact c;
+    c.body_a = a;
+    c.node_a = node;
+    c.body_b = b;
+    c.triangle_b = best_t;
+    c.nodes_b = t;
+    c.w_b = w;
+    c.gap = gap;
+    make_basis(n, c.basis);
+    cws.contacts.push_back(c);
+    ++stats.contacts;
+    if (a == b) ++stats.self_contacts;
+    if (gap < 0) {
+      ++stats.penetrating;
+      stats.max_penetration = std::max(stats.max_penetration, -gap);
+    }
+  }
+}
+
+// Step 4: equal and opposite inelastic impulses with Coulomb's cone (5.13), projected
+// Gauss-Seidel in alternating sweeps.
+void solve_impulses(const Bodies& all, const BodyCollisionOptions& options, Real dt,
+                    BodyCollisionStats& stats) {
+  std::vector<BodyContact>& contacts = all.cws.contacts;
+  const int m = static_cast<int>(contacts.size());
+  for (int iteration = 0; iteration < options.iterations; ++iteration) {
+    Real change = 0, largest = 0;
+    for (int step = 0; step < m; ++step) {
+      BodyContact& c = contacts[iteration % 2 == 0 ? step : m - 1 - step];
+      // Apart by gap: the pair may approach by gap in this step, and no more.
+      Real allowed = 0;
+      if (c.gap > 0) {
+        if (!(dt > 0)) continue;
+        allowed = c.gap / dt;
+      }
+      const Side a = side_a(c), b = side_b(c);
+      const Vec3 u = c.basis.transpose() * (side_velocity(all, a) - side_velocity(all, b));
+      Vec3 j = c.impulse;
+      j[0] = std::max(0.0, j[0] - (u[0] + allowed) / c.inverse_mass[0]);
+      if (options.friction > 0) {
+        j[1] -= u[1] / c.inverse_mass[1];
+        j[2] -= u[2] / c.inverse_mass[2];
+        const Real jt = std::hypot(j[1], j[2]);
+        const Real limit = options.friction * j[0];  // (5.13)
+        if (jt > limit) {
+          j[1] *= limit / jt;
+          j[2] *= limit / jt;
+        }
+      } else {
+        j[1] = j[2] = 0;
+      }
+      const Vec3 dj = j - c.impulse;
+      if (dj.isZero(0)) continue;
+      c.impulse = j;
+      const Vec3 J = c.basis * dj;
+      apply_impulse(all, a, J);
+      apply_impulse(all, b, -J);
+      change = std::max(change, dj.cwiseAbs().maxCoeff());
+      largest = std::max(largest, j.cwiseAbs().maxCoeff());
+    }
+    if (change <= 1e-12 * largest) break;
+  }
+  for (const BodyContact& c : contacts) stats.normal_impulse += c.impulse[0];
+}
+
+// Step 3: penetrating pairs to the mass-weighted mid-plane, Gauss-Seidel passes for pairs that
+// share nodes.
+void project_to_mid_plane(const Bodies& all, const BodyCollisionOptions& options,
+                          BodyCollisionStats& stats) {
+  std::vector<BodyContact>& contacts = all.cws.contacts;
+  for (int pass = 0; pass < options.iterations; ++pass) {
+    Real worst = 0;
+    for (BodyContact& c : contacts) {
+      const Side a = side_a(c), b = side_b(c);
+      const Vec3 n = c.basis.col(0);
+      const Real gap = n.dot(side_position(all, a) - side_position(all, b));
+      if (gap >= 0) continue;
+      worst = std::min(worst, gap);
+      const Real lambda = (kProjectionMargin - gap) / c.position_inverse_mass;
+      apply_displacement(all, a, lambda, n);
+      apply_displacement(all, b, -lambda, n);
+    }
+    if (worst >= 0) break;
+  }
+  for (const BodyContact& c : contacts) {
+    const Side a = side_a(c), b = side_b(c);
+    const Real gap = c.basis.col(0).dot(side_position(all, a) - side_position(all, b));
+    stats.max_penetration_after = std::max(stats.max_penetration_after, -gap);
+  }
+}
+
+// Back to q and v: local nodes through q_d and d-dot, then the mean-axis split; rigid and global
+// bodies through c and nu.
+void write_back(const Model& model, State& state, Workspace& ws, BodyCollisionWorkspace& cws) {
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    Scratch& s = cws.bodies[b];
+    if (!s.touched) continue;
+    const BodyModel& body = model.bodies[b];
+    BodyWorkspace& bw = ws.bodies[b];
+    auto q = state.q.segment(body.q_offset, body.q_size);
+    auto v = state.v.segment(body.v_offset, body.v_size);
+    const Mat3 Rt = bw.R.transpose();
+    if (body.has_local) {
+      const int d_q = 7 + body.n_s, d_v = 6 + body.n_s;
+      const Vec3 omega = v.segment<3>(3);
+      for (int i = 0; i < body.n_nodes(); ++i) {
+        // x-dot = R (V + omega x p + p-dot) (3.4): a node moved by dp would gain omega x dp, so
+        // its d-dot loses it and the velocity is the one the impulses left.
+        const Vec3 dp = Rt * (s.x[i] - s.x0[i]);
+        q.segment<3>(d_q + 3 * i) += dp;
+        v.segment<3>(d_v + 3 * i) += Rt * (s.x_dot[i] - s.x_dot0[i]) - omega.cross(dp);
+      }
+      recenter_displacements(body, q, v);
+      compute_body_kinematics(body, q, v, bw, false);
+      factor_generalized_mass(body, q, bw);
+      resplit_velocities(body, q, v, bw);
+    } else {
+      q.segment<3>(0) += s.shift;
+      v.segment<3>(0) = bw.R * s.nu.segment<3>(0);
+      v.segment(3, body.n_generalized() - 3) = s.nu.tail(body.n_generalized() - 3);
+    }
+    compute_body_kinematics(body, q, v, bw, false);
+  }
+}
+
+}  // namespace
+
+BodyCollisionStats resolve_body_collisions(const Model& model, State& state, Workspace& ws,
+                                           BodyCollisionWorkspace& cws,
+                                           const BodyCollisionOptions& options) {
+  BodyCollisionStats stats;
+  const auto start = Clock::now();
+  const int n_bodies = static_cast<int>(model.bodies.size());
+  bool any_self = false;
+  for (const BodyModel& body : model.bodies) any_self |= options.self_collision && body.has_local;
+  if (!options.enabled || n_bodies == 0 || (n_bodies < 2 && !any_self)) return stats;
+  size_workspace(model, cws);
+  const Real dt = ws.bodies[0].dt;
+
+  auto t0 = Clock::now();
+  cws.broadphase.reinserted = 0;
+  for (int b = 0; b < n_bodies; ++b) {
+    const BodyModel& body = model.bodies[b];
+    BodyWorkspace& bw = ws.bodies[b];
+    Scratch& s = cws.bodies[b];
+    const auto q = state.q.segment(body.q_offset, body.q_size);
+    const auto v = state.v.segment(body.v_offset, body.v_size);
+    compute_body_kinematics(body, q, v, bw, false);
+    s.x0 = bw.x;
+    s.x = bw.x;
+    s.x_dot0 = bw.x_dot;
+    s.x_dot = bw.x_dot;
+    s.shift.setZero();
+    s.touched = false;
+    s.mass_factored = false;
+    if (!body.has_local) {
+      s.nu.segment<3>(0) = bw.R.transpose() * v.segment<3>(0);
+      s.nu.tail(body.n_generalized() - 3) = v.segment(3, body.n_generalized() - 3);
+    }
+    compute_vertex_normals(body, s);
+    update_surface_tree(b, s.x, body.tessellation.triangles, options.margin, cws.broadphase);
+  }
+  stats.reinserted_leaves = cws.broadphase.reinserted;
+  gather_candidates(model, cws, options, stats);
+  stats.seconds_broadphase = seconds_since(t0);
+
+  t0 = Clock::now();
+  pair_nodes(model, cws, options, dt, stats);
+  stats.seconds_narrowphase = seconds_since(t0);
+  if (cws.contacts.empty()) {
+    stats.seconds = seconds_since(start);
+    return stats;
+  }
+
+  t0 = Clock::now();
+  const Bodies all{model, ws, cws};
+  for (BodyContact& c : cws.contacts) {
+    for (const int b : {c.body_a, c.body_b}) {
+      Scratch& s = cws.bodies[b];
+      if (model.bodies[b].has_local || s.mass_factored) continue;
+      factor_generalized_mass(model.bodies[b],
+                              state.q.segment(model.bodies[b].q_offset, model.bodies[b].q_size),
+                              ws.bodies[b]);
+      s.mass_factored = true;
+    }
+    const Side a = side_a(c), b = side_b(c);
+    for (int d = 0; d < 3; ++d) {
+      c.inverse_mass[d] =
+          side_inverse_mass(all, a, c.basis.col(d)) + side_inverse_mass(all, b, c.basis.col(d));
+    }
+    c.position_inverse_mass = position_inverse_mass(all, a) + position_inverse_mass(all, b);
+  }
+  solve_impulses(all, options, dt, stats);
+  project_to_mid_plane(all, options, stats);
+  write_back(model, state, ws, cws);
+  stats.seconds_response = seconds_since(t0);
+  stats.seconds = seconds_since(start);
+  return stats;
+}
+
+}  // namespace pbm

@@ -1,0 +1,123 @@
+// Collisions between deformable bodies, and of a body with itself (sec. 5.2.2).
+//
+// Runs after integration, in the collision stage beside the obstacles' resolve_penetrations
+// (sec. 5.2.1). The book's steps, as implemented:
+//  1. Polygons that may touch: a Bullet btDbvt per body over its surface triangles, fattened by
+//     the margin (collide/surface_broadphase.h). Each candidate pair of triangles of two bodies,
+//     or of one body with itself (not sharing a node), is tested for intersection (Moller,
+//     collide/triangle_geometry.h; counted in the statistics) and marks its nodes.
+//  2. Node pairing: a marked node x of one body is paired with the closest point y = sum w_k x_k
+//     of the other body's candidate triangles (a weighted node of the other model: the book
+//     pairs node with node, which lets a coarse mesh slip nodes between nodes). Interpenetration
+//     is the sign of n . (x - y), n the other surface's outward normal at y (interpolated vertex
+//     normals). The book's test (distances to the model frame) holds only for star-shaped models
+//     and says nothing within one body. Within one body the side is the one the pair was on at
+//     the step's start (x - dt x-dot, y - dt y-dot), so a shell squeezed flat (inner faces
+//     meeting) and a fold (outer faces meeting) are both kept apart; triangles that hold the
+//     node or one of its ring neighbours are skipped.
+//  3. Mid-plane projection: a penetrating pair is moved apart along n to the plane between its
+//     two points, each side by its share of the pair's inverse mass, so the mass centre does not
+//     move (equal masses: the book's mid-plane).
+//  4. Equal and opposite impulses j n and -j n (the time integral over the step of the book's
+//     forces f_n, -f_n): inelastic, they stop the relative normal velocity of a touching pair; a
+//     pair within the margin but apart may close its gap in one step and no more. Coulomb
+//     friction (5.13) on the relative tangential velocity, |j_t| <= b_f j_n, and (5.12)'s
+//     direction, against the slip. Projected Gauss-Seidel over the pairs in a fixed order,
+//     alternating sweeps. Every impulse is applied to both sides at once, so the total linear
+//     momentum is conserved exactly (to rounding) whatever the iteration count; each update
+//     lowers the kinetic energy (it minimizes it along the pair's direction under the bounds).
+// Body levels: a local body's side acts on its nodes alone, through q_d and d-dot with the lumped
+// nodal masses (the mean-axis split is restored afterwards, resplit_velocities, which moves no
+// node). Rigid and global bodies act through their generalized coordinates: an impulse J at
+// y maps by sum w_k P_k^T R^T J through the k x k mass block (A^+), as for obstacles (5.2.1); their
+// position correction translates c alone (inverse mass 1 / M), without turning or reshaping
+// them. Self-collision needs q_d, so only local bodies collide with themselves.
+// The obstacles' elastic push (5.11) has no counterpart here: body pairs are inelastic.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "collide/surface_broadphase.h"
+#include "core/types.h"
+#include "sim/model.h"
+
+namespace pbm {
+
+struct State;
+struct Workspace;
+
+struct BodyCollisionOptions {
+  bool enabled = true;
+  // Proximity band [m]: triangles' boxes are fattened by it, and pairs closer than it are
+  // contacts (speculative while apart). Small against the triangles' size.
+  Real margin = 0.02;
+  // A node found farther than this behind a face is taken for one on the far side of a thin
+  // part, not a contact [m]. Larger than the deepest penetration one step can make.
+  Real max_depth = 0.1;
+  Real friction = 0.3;  // b_f of (5.13), >= 0
+  bool self_collision = true;
+  int iterations = 16;  // Gauss-Seidel sweeps of the impulses, and passes of the projection
+};
+
+// Cost and outcome of one call.
+struct BodyCollisionStats {
+  int triangle_pairs = 0;          // candidate triangle pairs after the broadphase
+  int intersecting_triangles = 0;  // of those, pairs whose triangles intersect (step 1)
+  int node_tests = 0;              // node-triangle closest-point evaluations
+  int contacts = 0;                // node pairs within the margin
+  int self_contacts = 0;           // of those, within one body
+  int penetrating = 0;             // of those, interpenetrating before the projection
+  Real max_penetration = 0;        // deepest interpenetration before the projection [m]
+  Real max_penetration_after = 0;  // deepest left after it, over the contacts [m]
+  Real normal_impulse = 0;         // sum of j_n [N s]
+  int reinserted_leaves = 0;       // btDbvt leaves that moved
+  double seconds_broadphase = 0, seconds_narrowphase = 0, seconds_response = 0;
+  double seconds = 0;  // whole call
+};
+
+// One node paired with a point of another (or the same) body's triangle.
+struct BodyContact {
+  int body_a = 0, node_a = 0;      // the node side
+  int body_b = 0, triangle_b = 0;  // the triangle side
+  std::array<int, 3> nodes_b{};
+  Vec3 w_b = Vec3::Zero();           // barycentric weights of y, sum 1
+  Mat3 basis;                        // columns n (unit, from y toward x_a), t1, t2; world
+  Real gap = 0;                      // n . (x_a - y) at detection [m]
+  Vec3 inverse_mass = Vec3::Zero();  // of the pair along n, t1, t2 [1/kg]
+  Real position_inverse_mass = 0;    // along n for the projection [1/kg]
+  Vec3 impulse = Vec3::Zero();       // accumulated (j_n, j_t1, j_t2) on side a [N s]
+};
+
+// Scratch, rebuilt at will (results never depend on it). Sized on first use for the model.
+struct BodyCollisionWorkspace {
+  SurfaceBroadphase broadphase;
+  struct BodyScratch {
+    std::vector<Vec3> x0, x;             // node positions at entry / being projected, world [m]
+    std::vector<Vec3> x_dot0, x_dot;     // node velocities (local bodies), world [m/s]
+    std::vector<Vec3> normal;            // unit area-weighted vertex normals, world
+    std::vector<std::vector<int>> ring;  // per node: itself and its neighbours, sorted
+    VecX nu, g, delta;          // rigid/global: (R^T c-dot, omega, q_s-dot) and scratch (k)
+    Vec3 shift = Vec3::Zero();  // rigid/global: translation of c by the projection [m]
+    bool touched = false;
+    bool mass_factored = false;
+  };
+  std::vector<BodyScratch> bodies;
+  struct Candidate {
+    int body = 0, node = 0, other = 0, triangle = 0;
+    auto operator<=>(const Candidate&) const = default;
+  };
+  std::vector<std::array<int, 2>> pairs;
+  std::vector<Candidate> candidates;
+  std::vector<BodyContact> contacts;
+};
+
+// Detects and resolves the contacts between bodies (and within local bodies when enabled) at the
+// state the integrator produced: changes q and v of the bodies in contact (see above). Reads and
+// leaves ws.bodies[b] with the kinematics of the returned state for the bodies it changed. The
+// speculative bound uses the step ws.bodies[0].dt (0: contacts act only once touching).
+BodyCollisionStats resolve_body_collisions(const Model& model, State& state, Workspace& ws,
+                                           BodyCollisionWorkspace& cws,
+                                           const BodyCollisionOptions& options);
+
+}  // namespace pbm
