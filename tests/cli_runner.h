@@ -1,4 +1,4 @@
-// Runs the built `pbm` with arguments and collects its exit code and output (stdout + stderr).
+// Runs the built `pbm` (or any command) and collects its exit code and output (stdout + stderr).
 #pragma once
 
 #include <sys/wait.h>
@@ -13,15 +13,19 @@ struct CliResult {
   std::string output;
 };
 
-inline CliResult run_pbm(const std::string& args) {
-  const std::string cmd = std::string(PBM_BINARY_DIR) + "/app/pbm " + args + " 2>&1";
+// Runs a shell command line, stdout and stderr together.
+inline CliResult run_command(const std::string& cmd) {
   CliResult r;
-  FILE* pipe = popen(cmd.c_str(), "r");
+  FILE* pipe = popen((cmd + " 2>&1").c_str(), "r");
   char buf[4096];
   while (std::fgets(buf, sizeof buf, pipe)) r.output += buf;
   const int status = pclose(pipe);
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+inline CliResult run_pbm(const std::string& args) {
+  return run_command(std::string(PBM_BINARY_DIR) + "/app/pbm " + args);
 }
 
 }  // namespace pbm::test

@@ -2,7 +2,6 @@
 // platform has no OpenGL): a drag from the window centre pulls the `interactive` scene's body
 // toward the drag, and the screenshot shows the viewport and the panels.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -11,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli_runner.h"
 #include "png_io.h"
 
 namespace pbm {
@@ -34,13 +34,11 @@ SmokeResult smoke(const std::string& name, const std::string& extra) {
   const std::string cmd = "xvfb-run -a -s '-screen 0 1600x1000x24' " + std::string(PBM_BINARY_DIR) +
                           "/app/pbm-studio --smoke " + PBM_SOURCE_DIR +
                           "/scenes/interactive.json --frames 24 --screenshot " + png +
-                          " --report " + report + " " + extra + " 2>&1";
+                          " --report " + report + " " + extra;
+  const test::CliResult run = test::run_command(cmd);
   SmokeResult r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe)) r.output += buffer;
-  const int status = pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.code = run.code;
+  r.output = run.output;
   if (fs::exists(report)) r.report = nlohmann::json::parse(std::ifstream(report));
   return r;
 }
