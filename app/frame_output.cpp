@@ -53,6 +53,8 @@ std::string frame_stats_json(const Model& model, const FrameStats& s, long frame
   j["min_obstacle_distance"] =
       model.obstacles.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.min_distance);
   j["contact_nodes"] = s.contacts;
+  if (!model.constraints.empty()) j["constraint_violation"] = s.constraint_violation;
+  if (!s.notes.empty()) j["notes"] = s.notes;
   nlohmann::json stages;
   for (int k = 0; k < static_cast<int>(StepStage::count); ++k) {
     stages[stage_name(static_cast<StepStage>(k))] = s.stage_seconds[k];

@@ -118,6 +118,7 @@ int run_simulate(const SimulateOptions& o) {
   const Inputs inputs;
   Workspace ws;
   init_workspace(model, inputs, ws);
+  for (const std::string& note : model.constraints.notes) spdlog::warn("{}: {}", o.scene, note);
   State state = initial_state(model);
   FrameStats stats0;
   measure_state(model, state, ws, stats0);

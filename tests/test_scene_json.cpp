@@ -42,7 +42,7 @@ json full_scene() {
     "camera": {"position": [0, -10, 3], "target": [0, 0, 1], "up": [0, 0, 2], "fov": 35},
     "solver": {"dt": 0.031, "integrator": "rk45", "tolerance": 1e-5, "fps": 24, "duration": 3,
                "contact_step_reduction": true, "contact_dt_factor": 0.5, "max_retries": 6,
-               "energy_growth_bound": 2},
+               "energy_growth_bound": 2, "constraint_alpha": 7, "constraint_solver": "sparse"},
     "bodies": [
       {"name": "jello", "level": "global", "order": "first",
        "shape": {"kind": "taper_bend", "q_s": {"a0": 2.0, "eps1": 0.5, "t1": 0.3},
@@ -76,6 +76,14 @@ json full_scene() {
       {"target": "gravity[2]", "keys": [[0, -9.81]]},
       {"target": "springs[0].target[1]", "interpolation": "step", "keys": [[0, 0], [2, 1]]},
       {"target": "springs[1].stiffness", "keys": [[0, 100], [0.5, 200], [1, 100]]}
+    ],
+    "constraints": [
+      {"name": "neck", "a": {"body": "jello", "node": 3},
+       "b": {"body": 1, "material_point": [0.2, 0.3]}, "alpha": 20},
+      {"a": {"body": 1, "point": [0, 0, 1]}, "b": {"world": [0, 0, 5]}, "beta": 3},
+      {"name": "pivot", "kind": "hinge", "a": {"body": 0, "point": [0, 0, 0]},
+       "b": {"body": 1, "point": [1, 0, 0]}, "axis": [0, 2, 0], "length": 0.5, "stiffness": 40,
+       "rest_angle": 0.1, "damping": 0.5}
     ]
   })");
 }
@@ -302,6 +310,30 @@ void expect_same_scene(const Scene& a, const Scene& b) {
     EXPECT_EQ(x.t_begin, y.t_begin);
     EXPECT_EQ(x.t_end, y.t_end);
     EXPECT_EQ(x.max_force, y.max_force);
+  }
+  EXPECT_EQ(a.solver.constraint_alpha, b.solver.constraint_alpha);
+  EXPECT_EQ(a.solver.constraint_beta, b.solver.constraint_beta);
+  EXPECT_EQ(a.solver.constraint_solver, b.solver.constraint_solver);
+  ASSERT_EQ(a.constraints.size(), b.constraints.size());
+  for (std::size_t i = 0; i < a.constraints.size(); ++i) {
+    const ConstraintDef& x = a.constraints[i];
+    const ConstraintDef& y = b.constraints[i];
+    EXPECT_EQ(x.name, y.name);
+    EXPECT_EQ(x.kind, y.kind);
+    for (const auto& [u, w] : {std::pair{&x.a, &y.a}, std::pair{&x.b, &y.b}}) {
+      EXPECT_EQ(u->body, w->body);
+      EXPECT_EQ(u->node, w->node);
+      EXPECT_EQ(u->material_point, w->material_point);
+      EXPECT_EQ(u->point, w->point);
+      EXPECT_EQ(u->world, w->world);
+    }
+    EXPECT_EQ(x.alpha, y.alpha);
+    EXPECT_EQ(x.beta, y.beta);
+    EXPECT_EQ(x.axis, y.axis);
+    EXPECT_EQ(x.length, y.length);
+    EXPECT_EQ(x.stiffness, y.stiffness);
+    EXPECT_EQ(x.rest_angle, y.rest_angle);
+    EXPECT_EQ(x.damping, y.damping);
   }
   ASSERT_EQ(a.tracks.size(), b.tracks.size());
   for (std::size_t i = 0; i < a.tracks.size(); ++i) {
@@ -628,6 +660,62 @@ TEST(SceneJsonErrors, NodeIndexAndBodyReferences) {
   expect_error(j, "bodies[1].name", "duplicate body name 'jello'");
 }
 
+TEST(SceneJson, ConstraintsParseWithDefaultsAndOverrides) {
+  const Scene s = parse_scene(full_scene().dump(), kFile);
+  EXPECT_EQ(s.solver.constraint_alpha, 7);
+  EXPECT_FALSE(s.solver.constraint_beta.has_value());
+  EXPECT_EQ(s.solver.constraint_solver, ConstraintSolverKind::sparse);
+  ASSERT_EQ(s.constraints.size(), 3u);
+  EXPECT_EQ(s.constraints[0].a.body, 0);
+  EXPECT_EQ(s.constraints[0].a.node, 3);
+  EXPECT_EQ(s.constraints[0].b.material_point, Vec2(0.2, 0.3));
+  EXPECT_EQ(s.constraints[0].alpha, 20.0);
+  EXPECT_EQ(s.constraints[1].name, "constraint1");
+  EXPECT_EQ(s.constraints[1].b.body, -1);
+  EXPECT_EQ(s.constraints[1].b.world, Vec3(0, 0, 5));
+  EXPECT_EQ(s.constraints[1].beta, 3.0);
+  EXPECT_EQ(s.constraints[2].kind, ConstraintKind::hinge);
+  EXPECT_EQ(s.constraints[2].axis, Vec3(0, 1, 0));
+}
+
+TEST(SceneJsonErrors, ConstraintsNameTheirPath) {
+  const std::vector<std::pair<json, std::string>> cases = {
+      {{{"a", {{"body", "tail"}, {"node", 0}}}, {"b", {{"world", {0, 0, 0}}}}},
+       "constraints[0].a.body"},
+      {{{"a", {{"body", 0}, {"node", 0}}}, {"b", {{"body", 7}, {"node", 0}}}},
+       "constraints[0].b.body"},
+      {{{"a", {{"world", {0, 0, 0}}}}, {"b", {{"body", 0}, {"node", 0}}}},
+       "constraints[0].a.world"},
+      {{{"a", {{"body", 0}, {"node", 0}, {"point", {0, 0, 0}}}}, {"b", {{"world", {0, 0, 0}}}}},
+       "constraints[0].a"},
+      {{{"a", {{"body", 0}, {"node", 999}}}, {"b", {{"world", {0, 0, 0}}}}},
+       "constraints[0].a.node"},
+      {{{"a", {{"body", 0}, {"node", 0}}}, {"b", {{"world", {0, 0, 0}}, {"body", 0}}}},
+       "constraints[0].b.body"},
+      {{{"a", {{"body", 0}, {"node", 0}}}, {"b", {{"world", {0, 0, 0}}}}, {"axis", {0, 0, 1}}},
+       "constraints[0].axis"},
+      {{{"kind", "hinge"}, {"a", {{"body", 0}, {"node", 0}}}, {"b", {{"world", {0, 0, 0}}}}},
+       "constraints[0].a"},
+      {{{"a", {{"body", 0}, {"node", 0}}}, {"b", {{"world", {0, 0, 0}}}}, {"alpha", -1}},
+       "constraints[0].alpha"},
+      {{{"a", {{"body", 0}, {"node", 0}}}}, "constraints[0].b"},
+  };
+  for (const auto& [constraint, path] : cases) {
+    json j = {{"bodies", {{{"name", "ball"}, {"material", {{"mass", 1}}}}}},
+              {"constraints", {constraint}}};
+    try {
+      parse_scene(j.dump(), kFile);
+      ADD_FAILURE() << "expected an error at " << path;
+    } catch (const Error& e) {
+      EXPECT_EQ(e.path(), path) << e.what();
+      EXPECT_EQ(e.file(), kFile);
+    }
+  }
+  json solver = {{"bodies", {{{"material", {{"mass", 1}}}}}},
+                 {"solver", {{"constraint_solver", "cholesky"}}}};
+  EXPECT_THROW(parse_scene(solver.dump(), kFile), Error);
+}
+
 TEST(SceneJsonErrors, ObstacleKeysMustMatchTheKind) {
   json j = full_scene();
   j["obstacles"][0]["half_extents"] = {1, 1, 1};
@@ -778,8 +866,9 @@ TEST(SceneSchema, IsValidJsonListingExactlyTheTopLevelKeys) {
   EXPECT_EQ(schema["additionalProperties"], false);
   std::set<std::string> keys;
   for (const auto& [key, value] : schema["properties"].items()) keys.insert(key);
-  EXPECT_EQ(keys, (std::set<std::string>{"name", "gravity", "solver", "bodies", "obstacles",
-                                         "force_fields", "springs", "tracks", "camera"}));
+  EXPECT_EQ(keys,
+            (std::set<std::string>{"name", "gravity", "solver", "bodies", "obstacles",
+                                   "force_fields", "springs", "tracks", "constraints", "camera"}));
   EXPECT_EQ(schema["required"], json::array({"bodies"}));
   // Every object schema with named properties is closed, like the parser.
   for (const auto& [name, def] : schema["$defs"].items()) {
@@ -811,6 +900,12 @@ TEST(SceneSchema, AcceptsWhatTheParserWritesAndRejectsWhatItRejects) {
   bad = written;
   bad["bodies"][0]["material"]["mass"] = 1;  // both masses
   EXPECT_EQ(validate(schema, schema, bad, ""), "bodies[0].material: anyOf/oneOf not satisfied");
+  bad = written;
+  bad["constraints"][0]["axis"] = {0, 0, 1};  // hinge key on a point constraint
+  EXPECT_EQ(validate(schema, schema, bad, ""), "constraints[0]: anyOf/oneOf not satisfied");
+  bad = written;
+  bad["constraints"][1]["b"]["body"] = 0;  // world and body together
+  EXPECT_EQ(validate(schema, schema, bad, ""), "constraints[1].b: anyOf/oneOf not satisfied");
   bad = written;
   bad["tracks"][0]["target"] = "bodies[0].position[0]";
   EXPECT_EQ(validate(schema, schema, bad, ""), "tracks[0].target: does not match pattern");

@@ -24,6 +24,10 @@ enum class ObstacleKind { plane, box, mesh };
 enum class ForceFieldKind { acceleration, force_per_node };
 // step holds each key's value until the next key (recorded mouse drags).
 enum class Interpolation { linear, smooth, step };
+// A point-to-point constraint (7.21), or a hinge: two of them on an axis plus a rotational spring.
+enum class ConstraintKind { point, hinge };
+// How N f_c + r = 0 (7.33) is solved: dense LU, or a sparse LDL^T for loop-free systems.
+enum class ConstraintSolverKind { dense, sparse };
 
 // Number of q_s entries for each shape kind.
 int shape_parameter_count(ShapeKind kind);
@@ -95,6 +99,30 @@ struct SpringDef {
   Real max_force = 1e300;  // [N], > 0: the force's magnitude is clamped to it
 };
 
+// One end of a constraint: a point of a body (a node, a material point (u, v) resolved to the
+// nearest node like springs, or a point fixed in the body frame), or a fixed world anchor.
+struct ConstraintEndDef {
+  int body = -1;                       // index into Scene::bodies; < 0: the world anchor `world`
+  int node = -1;                       // >= 0: node index
+  std::optional<Vec2> material_point;  // (u, v) in radians
+  std::optional<Vec3> point;           // body frame [m]
+  Vec3 world = Vec3::Zero();           // world frame [m], when body < 0
+};
+
+// Holonomic constraint between two ends (7.1), stabilized by Baumgarte's (7.14).
+struct ConstraintDef {
+  std::string name;
+  ConstraintKind kind = ConstraintKind::point;
+  ConstraintEndDef a, b;      // a is always a body
+  std::optional<Real> alpha;  // overrides solver.constraint_alpha [1/s], >= 0
+  std::optional<Real> beta;   // overrides solver.constraint_beta [1/s], >= 0
+  Vec3 axis{0, 1, 0};         // hinge: axis at the initial state, world frame (normalized on load)
+  Real length = 0.2;          // hinge: distance between its two point constraints [m], > 0
+  Real stiffness = 0;         // hinge: rotational spring [N m/rad], >= 0 (sec. 6.4's see-saw)
+  Real rest_angle = 0;        // hinge: angle of a relative to b where the spring is slack [rad]
+  Real damping = 0;           // hinge: rotational damper [N m s/rad], >= 0
+};
+
 struct Keyframe {
   Real time = 0;
   Real value = 0;
@@ -118,6 +146,9 @@ struct SolverDef {
   Real contact_dt_factor = 0.25;        // dt multiplier while in contact, (0, 1]
   int max_retries = 4;                  // stability guard: halvings per frame
   Real energy_growth_bound = 10.0;      // max (E_after / E_before) for one frame
+  Real constraint_alpha = 10.0;         // Baumgarte alpha of (7.14) [1/s], >= 0
+  std::optional<Real> constraint_beta;  // Baumgarte beta [1/s], >= 0; absent: = alpha (7.16)
+  ConstraintSolverKind constraint_solver = ConstraintSolverKind::dense;
 };
 
 // Where the renderer looks from (position, target, up) and its vertical field of view. Scenes
@@ -139,6 +170,7 @@ struct Scene {
   std::vector<ForceFieldDef> force_fields;
   std::vector<SpringDef> springs;
   std::vector<TrackDef> tracks;
+  std::vector<ConstraintDef> constraints;
   std::optional<CameraDef> camera;
 };
 

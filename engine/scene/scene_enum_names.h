@@ -36,5 +36,9 @@ inline constexpr NameTable<Interpolation, 3> kInterpolationNames{
     {{"linear", Interpolation::linear},
      {"smooth", Interpolation::smooth},
      {"step", Interpolation::step}}};
+inline constexpr NameTable<ConstraintKind, 2> kConstraintKindNames{
+    {{"point", ConstraintKind::point}, {"hinge", ConstraintKind::hinge}}};
+inline constexpr NameTable<ConstraintSolverKind, 2> kConstraintSolverKindNames{
+    {{"dense", ConstraintSolverKind::dense}, {"sparse", ConstraintSolverKind::sparse}}};
 
 }  // namespace pbm

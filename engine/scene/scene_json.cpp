@@ -358,6 +358,91 @@ SpringDef parse_spring(const JsonNode& node, std::size_t index,
   return spring;
 }
 
+// ---- constraints (ch. 7) -----------------------------------------------------------------------
+
+// "a" or "b" of a constraint: {"world": [x, y, z]} (b only), or {"body", one of "node",
+// "material_point", "point"}; a hinge's body ends need "point" (its axis runs through them).
+ConstraintEndDef parse_constraint_end(const JsonNode& node, const std::vector<BodyDef>& bodies,
+                                      bool world_allowed, bool hinge) {
+  require_object(node, {"body", "node", "material_point", "point", "world"});
+  ConstraintEndDef end;
+  if (auto world = find_child(node, "world")) {
+    if (!world_allowed) fail(*world, "the first end of a constraint must be a body point");
+    for (const char* key : {"body", "node", "material_point", "point"}) {
+      if (auto other = find_child(node, key)) {
+        fail(*other, std::string("key '") + key + "' is not valid with 'world'");
+      }
+    }
+    end.world = read_vec3(*world);
+    return end;
+  }
+  end.body = parse_body_reference(require_child(node, "body"), bodies);
+  const BodyDef& body = bodies[static_cast<std::size_t>(end.body)];
+  const std::optional<JsonNode> node_index = find_child(node, "node");
+  const std::optional<JsonNode> material_point = find_child(node, "material_point");
+  const std::optional<JsonNode> point = find_child(node, "point");
+  const int given =
+      int(node_index.has_value()) + int(material_point.has_value()) + int(point.has_value());
+  if (given != 1) fail(node, "give exactly one of 'node', 'material_point' and 'point'");
+  if (hinge && !point) fail(node, "a hinge's body ends need 'point' (body frame, on its axis)");
+  if (node_index) {
+    end.node = read_int(*node_index);
+    if (end.node < 0 || end.node >= node_count(body)) {
+      fail(*node_index, "node " + std::to_string(end.node) + " is out of range: body '" +
+                            body.name + "' has " + std::to_string(node_count(body)) +
+                            " nodes (2 + rings * segments)");
+    }
+  }
+  if (material_point) {
+    const Vec2 uv = read_vec2(*material_point);
+    require_in_range(element(*material_point, 0), uv[0], -std::numbers::pi / 2,
+                     std::numbers::pi / 2);
+    require_in_range(element(*material_point, 1), uv[1], -std::numbers::pi, std::numbers::pi);
+    end.material_point = uv;
+  }
+  if (point) end.point = read_vec3(*point);
+  return end;
+}
+
+ConstraintDef parse_constraint(const JsonNode& node, std::size_t index,
+                               const std::vector<BodyDef>& bodies) {
+  require_object(node, {"name", "kind", "a", "b", "alpha", "beta", "axis", "length", "stiffness",
+                        "rest_angle", "damping"});
+  ConstraintDef c;
+  c.name = "constraint" + std::to_string(index);
+  if (auto name = find_child(node, "name")) c.name = read_string(*name);
+  if (auto kind = find_child(node, "kind")) c.kind = read_enum(*kind, kConstraintKindNames);
+  const bool hinge = c.kind == ConstraintKind::hinge;
+  if (!hinge) {
+    for (const char* key : {"axis", "length", "stiffness", "rest_angle", "damping"}) {
+      if (auto other = find_child(node, key)) {
+        fail(*other, std::string("key '") + key + "' is only valid for a hinge");
+      }
+    }
+  }
+  c.a = parse_constraint_end(require_child(node, "a"), bodies, false, hinge);
+  c.b = parse_constraint_end(require_child(node, "b"), bodies, true, hinge);
+  if (auto alpha = find_child(node, "alpha"))
+    c.alpha = require_non_negative(*alpha, read_real(*alpha));
+  if (auto beta = find_child(node, "beta")) c.beta = require_non_negative(*beta, read_real(*beta));
+  if (auto axis = find_child(node, "axis"))
+    c.axis = normalized_direction(*axis, read_vec3(*axis), "axis");
+  if (auto length = find_child(node, "length"))
+    c.length = require_positive(*length, read_real(*length));
+  if (auto stiffness = find_child(node, "stiffness")) {
+    c.stiffness = require_non_negative(*stiffness, read_real(*stiffness));
+  }
+  if (auto rest = find_child(node, "rest_angle")) c.rest_angle = read_real(*rest);
+  if (auto damping = find_child(node, "damping")) {
+    c.damping = require_non_negative(*damping, read_real(*damping));
+  }
+  if (c.b.body == c.a.body && c.b.node == c.a.node && c.a.node >= 0) {
+    fail(node, "both ends are node " + std::to_string(c.a.node) + " of the same body");
+  }
+  if (hinge && c.b.body == c.a.body) fail(node, "a hinge must join two different bodies");
+  return c;
+}
+
 // ---- tracks ------------------------------------------------------------------------------------
 
 // Consumes `token` at the front of `text`.
@@ -478,7 +563,8 @@ TrackDef parse_track(const JsonNode& node, const Scene& scene) {
 SolverDef parse_solver(const JsonNode& node) {
   require_object(node,
                  {"dt", "integrator", "tolerance", "fps", "duration", "contact_step_reduction",
-                  "contact_dt_factor", "max_retries", "energy_growth_bound"});
+                  "contact_dt_factor", "max_retries", "energy_growth_bound", "constraint_alpha",
+                  "constraint_beta", "constraint_solver"});
   SolverDef solver;
   if (auto dt = find_child(node, "dt")) solver.dt = require_positive(*dt, read_real(*dt));
   if (auto integrator = find_child(node, "integrator")) {
@@ -510,6 +596,15 @@ SolverDef parse_solver(const JsonNode& node) {
     // A bound below 1 would reject frames that merely conserve energy.
     solver.energy_growth_bound = read_real(*bound);
     if (!(solver.energy_growth_bound >= 1)) fail(*bound, "must be >= 1");
+  }
+  if (auto alpha = find_child(node, "constraint_alpha")) {
+    solver.constraint_alpha = require_non_negative(*alpha, read_real(*alpha));
+  }
+  if (auto beta = find_child(node, "constraint_beta")) {
+    solver.constraint_beta = require_non_negative(*beta, read_real(*beta));
+  }
+  if (auto kind = find_child(node, "constraint_solver")) {
+    solver.constraint_solver = read_enum(*kind, kConstraintSolverKindNames);
   }
   return solver;
 }
@@ -551,7 +646,7 @@ Scene parse_scene(const std::string& json_text, const std::string& file_for_mess
   const nlohmann::json document = parse_json_text(json_text, file_for_messages);
   const JsonNode root = root_node(document, file_for_messages);
   require_object(root, {"name", "gravity", "solver", "bodies", "obstacles", "force_fields",
-                        "springs", "tracks", "camera"});
+                        "springs", "tracks", "constraints", "camera"});
   Scene scene;
   scene.file = file_for_messages;
   if (auto name = find_child(root, "name")) scene.name = read_string(*name);
@@ -581,6 +676,9 @@ Scene parse_scene(const std::string& json_text, const std::string& file_for_mess
   scene.springs = parse_list<SpringDef>(root, "springs", [&](const JsonNode& node, std::size_t i) {
     return parse_spring(node, i, scene.bodies);
   });
+  scene.constraints = parse_list<ConstraintDef>(
+      root, "constraints",
+      [&](const JsonNode& node, std::size_t i) { return parse_constraint(node, i, scene.bodies); });
   // Tracks last: their targets refer to bodies and springs.
   scene.tracks = parse_list<TrackDef>(
       root, "tracks", [&](const JsonNode& node, std::size_t) { return parse_track(node, scene); });

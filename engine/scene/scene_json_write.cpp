@@ -116,6 +116,41 @@ Json write_spring(const SpringDef& spring) {
   return j;
 }
 
+Json write_constraint_end(const ConstraintEndDef& end) {
+  Json j;
+  if (end.body < 0) {
+    j["world"] = to_array(end.world);
+    return j;
+  }
+  j["body"] = end.body;
+  if (end.point) {
+    j["point"] = to_array(*end.point);
+  } else if (end.node >= 0 || !end.material_point) {
+    j["node"] = end.node;
+  } else {
+    j["material_point"] = to_array(*end.material_point);
+  }
+  return j;
+}
+
+Json write_constraint(const ConstraintDef& c) {
+  Json j;
+  j["name"] = c.name;
+  j["kind"] = enum_name(c.kind, kConstraintKindNames);
+  j["a"] = write_constraint_end(c.a);
+  j["b"] = write_constraint_end(c.b);
+  if (c.alpha) j["alpha"] = *c.alpha;
+  if (c.beta) j["beta"] = *c.beta;
+  if (c.kind == ConstraintKind::hinge) {
+    j["axis"] = to_array(c.axis);
+    j["length"] = c.length;
+    j["stiffness"] = c.stiffness;
+    j["rest_angle"] = c.rest_angle;
+    j["damping"] = c.damping;
+  }
+  return j;
+}
+
 Json write_solver(const SolverDef& solver) {
   Json j;
   j["dt"] = solver.dt;
@@ -127,6 +162,9 @@ Json write_solver(const SolverDef& solver) {
   j["contact_dt_factor"] = solver.contact_dt_factor;
   j["max_retries"] = solver.max_retries;
   j["energy_growth_bound"] = solver.energy_growth_bound;
+  j["constraint_alpha"] = solver.constraint_alpha;
+  if (solver.constraint_beta) j["constraint_beta"] = *solver.constraint_beta;
+  j["constraint_solver"] = enum_name(solver.constraint_solver, kConstraintSolverKindNames);
   return j;
 }
 
@@ -165,6 +203,8 @@ std::string scene_to_json(const Scene& scene) {
                            {"interpolation", enum_name(track.interpolation, kInterpolationNames)},
                            {"keys", std::move(keys)}});
   }
+  j["constraints"] = Json::array();
+  for (const ConstraintDef& c : scene.constraints) j["constraints"].push_back(write_constraint(c));
   return j.dump(2) + "\n";
 }
 

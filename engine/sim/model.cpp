@@ -18,24 +18,6 @@ std::string body_path(int b) {
   return "bodies[" + std::to_string(b) + "]";
 }
 
-// Nearest node in material coordinates (v wraps at the seam).
-int nearest_node(const Tessellation& t, const Vec2& uv) {
-  int best = 0;
-  Real best_d = 1e300;
-  for (int i = 0; i < t.node_count(); ++i) {
-    Real du = t.uv[i].x() - uv.x();
-    Real dv = std::remainder(t.uv[i].y() - uv.y(), 2 * std::numbers::pi);
-    // At the poles v is arbitrary (fig. 4.1): only u counts there.
-    if (i == t.south_pole || i == t.north_pole) dv = 0;
-    const Real d = du * du + dv * dv * std::cos(uv.x()) * std::cos(uv.x());
-    if (d < best_d) {
-      best_d = d;
-      best = i;
-    }
-  }
-  return best;
-}
-
 // Where obstacles push a local body (collide/rigid_contact.h): material points in each surface
 // triangle (three: barycentric 2/3, 1/6, 1/6, Strang-Fix's degree-2 rule), each with its share of
 // the triangle's area on the initial shape times the book's stiffness per area, sum K_ii / area.
@@ -253,6 +235,23 @@ TrackModel build_track(const Scene& scene, int t) {
 
 }  // namespace
 
+int nearest_node(const Tessellation& t, const Vec2& uv) {
+  int best = 0;
+  Real best_d = 1e300;
+  for (int i = 0; i < t.node_count(); ++i) {
+    Real du = t.uv[i].x() - uv.x();
+    Real dv = std::remainder(t.uv[i].y() - uv.y(), 2 * std::numbers::pi);
+    // At the poles v is arbitrary (fig. 4.1): only u counts there.
+    if (i == t.south_pole || i == t.north_pole) dv = 0;
+    const Real d = du * du + dv * dv * std::cos(uv.x()) * std::cos(uv.x());
+    if (d < best_d) {
+      best_d = d;
+      best = i;
+    }
+  }
+  return best;
+}
+
 Model build_model(const Scene& scene) {
   Model model;
   model.scene = scene;
@@ -300,6 +299,7 @@ Model build_model(const Scene& scene) {
   for (int t = 0; t < static_cast<int>(scene.tracks.size()); ++t) {
     model.tracks.push_back(build_track(scene, t));
   }
+  model.constraints = build_constraints(scene, model.bodies);
   return model;
 }
 

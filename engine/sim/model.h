@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "collide/mesh_obstacle.h"
+#include "constrain/constraint_model.h"
 #include "core/types.h"
 #include "deform/membrane_stiffness.h"
 #include "deform/superquadric.h"
@@ -124,8 +125,13 @@ struct Model {
   std::vector<ForceFieldDef> force_fields;
   std::vector<SpringModel> springs;
   std::vector<TrackModel> tracks;
+  ConstraintSystemModel constraints;  // ch. 7
   int n_q = 0, n_v = 0;
 };
+
+// The node nearest to material coordinates (u, v) (v wraps at the seam): where springs and
+// constraints given by a material point act.
+int nearest_node(const Tessellation& t, const Vec2& uv);
 
 // Throws pbm::Error (file, path) when the scene cannot be compiled.
 Model build_model(const Scene& scene);

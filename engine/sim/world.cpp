@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "collide/rigid_contact.h"
+#include "constrain/hinge_spring.h"
 #include "deform/reference_shape.h"
 
 namespace pbm {
@@ -88,6 +89,18 @@ void evaluate_derivative(const Model& model, const Inputs& inputs, Workspace& ws
     t0 = Clock::now();
     auto out = v_dot.segment(body.v_offset, body.v_size);
     solve_body_dynamics(body, qb, vb, bw, out);
+    ws.stage_seconds[static_cast<int>(StepStage::dynamics)] += seconds_since(t0);
+  }
+  // (7.3), (7.4): every body's unconstrained rates are known; the constraint forces couple them.
+  if (!model.constraints.empty()) {
+    const auto t0 = Clock::now();
+    add_constraint_rates(model, q, v, ws.bodies, ws.constraints, v_dot);
+    ws.stage_seconds[static_cast<int>(StepStage::constraints)] += seconds_since(t0);
+  }
+  for (const BodyModel& body : model.bodies) {
+    const auto qb = q.segment(body.q_offset, body.q_size);
+    const auto vb = v.segment(body.v_offset, body.v_size);
+    auto out = v_dot.segment(body.v_offset, body.v_size);
     auto qd = q_dot.segment(body.q_offset, body.q_size);
     if (body.order == DynamicsOrder::second) {
       body_kinematic_rates(body, qb, vb, qd);
@@ -97,7 +110,6 @@ void evaluate_derivative(const Model& model, const Inputs& inputs, Workspace& ws
       body_kinematic_rates(body, qb, out, qd);
       out.setZero();
     }
-    ws.stage_seconds[static_cast<int>(StepStage::dynamics)] += seconds_since(t0);
   }
 }
 
@@ -164,6 +176,8 @@ const char* stage_name(StepStage stage) {
       return "contact_forces";
     case StepStage::dynamics:
       return "dynamics";
+    case StepStage::constraints:
+      return "constraints";
     case StepStage::integrate:
       return "integrate";
     case StepStage::collisions:
@@ -182,6 +196,7 @@ void init_workspace(const Model& model, const Inputs& inputs, Workspace& ws) {
   ws.integrator.rk45_h = 0;
   ws.last_measured.valid = false;
   ws.first_order_velocity.setZero(model.n_v);
+  init_constraint_workspace(model, ws.constraints);
   evaluate_drive(model, 0, ws.drive);
   ws.derivative = [&model, &inputs, &ws](Real t, const VecX& q, const VecX& v, VecX& q_dot,
                                          VecX& v_dot) {
@@ -198,7 +213,12 @@ bool advance_substep(const Model& model, State& state, Real dt, Workspace& ws, i
   for (BodyWorkspace& bw : ws.bodies) bw.dt = dt;
   IntegrationStats istats;
   bool ok = true;
-  const double before = ws.stage_seconds[0] + ws.stage_seconds[1];
+  auto derivative_seconds = [&ws] {
+    return ws.stage_seconds[static_cast<int>(StepStage::forces)] +
+           ws.stage_seconds[static_cast<int>(StepStage::contact_forces)] +
+           ws.stage_seconds[static_cast<int>(StepStage::constraints)];
+  };
+  const double before = derivative_seconds();
   switch (model.solver.integrator) {
     case IntegratorKind::euler:
       euler_step(ws.derivative, ws.kinematic, state.time, dt, state.q, state.v, ws.integrator,
@@ -215,7 +235,7 @@ bool advance_substep(const Model& model, State& state, Real dt, Workspace& ws, i
   evaluations += istats.evaluations;
   state.time += dt;
   ws.stage_seconds[static_cast<int>(StepStage::integrate)] +=
-      seconds_since(t0) - (ws.stage_seconds[0] + ws.stage_seconds[1] - before);
+      seconds_since(t0) - (derivative_seconds() - before);
   t0 = Clock::now();
   for (const BodyModel& body : model.bodies) {
     auto q = state.q.segment(body.q_offset, body.q_size);
@@ -261,6 +281,10 @@ void measure_state(const Model& model, const State& state, Workspace& ws, FrameS
     bs.elastic = e.elastic;
     bs.position = q.segment<3>(0);
   }
+  if (!model.constraints.empty()) {
+    stats.elastic += hinge_spring_energy(model, ws.bodies);
+    stats.constraint_violation = max_constraint_violation(model, state.q, ws.bodies);
+  }
 }
 
 FrameResult advance_frame(const Model& model, State& state, Workspace& ws) {
@@ -292,6 +316,10 @@ FrameResult advance_frame(const Model& model, State& state, Workspace& ws) {
     const Vec3 d = ws.drive.spring_target[s] - ws.bodies[sp.body].x[sp.node];
     const Real k = std::max(ws.drive.spring_stiffness[s], end_drive.spring_stiffness[s]);
     floor += k * d.squaredNorm();
+  }
+  // Assembling parts (7.16) gain the kinetic energy Baumgarte's feedback gives them.
+  if (!model.constraints.empty()) {
+    floor += constraint_energy_allowance(model, state.q, state.v, ws.bodies);
   }
   const State start = state;
   ws.stage_seconds.fill(0);
@@ -349,6 +377,9 @@ FrameResult advance_frame(const Model& model, State& state, Workspace& ws) {
       result.stats.evaluations = evaluations;
       result.stats.contacts = ws.contacts;
       result.stats.stage_seconds = ws.stage_seconds;
+      for (const std::string& note : model.constraints.notes) {
+        result.stats.notes += (result.stats.notes.empty() ? "" : "; ") + note;
+      }
       result.stats.wall_seconds = seconds_since(wall0);
       return result;
     }

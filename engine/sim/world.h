@@ -1,6 +1,6 @@
 // step(): one frame of the whole system as named, ordered, timed stages (STYLE §3, DESIGN §3):
 //   drive (tracks) -> external forces (gravity, fields, springs, mouse, damping, contact)
-//   -> dynamics solve -> integrate -> collisions (projection / impulses)
+//   -> dynamics solve -> constraint forces (ch. 7) -> integrate -> collisions
 // wrapped in the stability guard of DESIGN §6.
 #pragma once
 
@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "constrain/constraint_forces.h"
 #include "deform/body_dynamics.h"
 #include "integrate/integrators.h"
 #include "sim/inputs.h"
@@ -18,8 +19,17 @@
 namespace pbm {
 
 // Where a step's time goes: nodal forces (with kinematics, elastic forces and the mass block),
-// obstacle forces (5.11, 5.12), the solve of (3.13), the integrator, penetration resolution.
-enum class StepStage { forces, contact_forces, dynamics, integrate, collisions, count };
+// obstacle forces (5.11, 5.12), the solve of (3.13), the constraint forces (7.33) with the hinge
+// springs, the integrator, penetration resolution.
+enum class StepStage {
+  forces,
+  contact_forces,
+  dynamics,
+  constraints,
+  integrate,
+  collisions,
+  count
+};
 const char* stage_name(StepStage stage);
 
 struct BodyFrameStats {
@@ -37,13 +47,18 @@ struct FrameStats {
   Real kinetic = 0, elastic = 0, potential = 0;
   Real min_distance = 1e300;  // min signed distance of any node to any obstacle after the frame
   int contacts = 0;
+  Real constraint_violation = 0;  // max_l |C_l| after the frame [m] (ch. 7; 0 without any)
   std::array<double, static_cast<int>(StepStage::count)> stage_seconds{};
   std::vector<BodyFrameStats> bodies;
+  // Warnings about the model's solvers, '; '-separated (a constraint loop's dense fallback,
+  // Baumgarte gains too stiff for dt): empty when all is well.
+  std::string notes;
 };
 
 struct Workspace {
   std::vector<BodyWorkspace> bodies;
   IntegratorWorkspace integrator;
+  ConstraintWorkspace constraints;
   Drive drive;
   VecX first_order_velocity;  // velocities of first-order bodies from the last evaluation
   DerivativeFn derivative;

@@ -1,0 +1,72 @@
+#include "constrain/point_constraint.h"
+
+namespace pbm {
+namespace {
+
+// Body-frame position of the end and its velocity relative to the frame (J q_s-dot + d-dot).
+Vec3 body_point(const ConstraintPoint& end, const BodyWorkspace& bw) {
+  return end.node >= 0 ? bw.p[end.node] : end.point;
+}
+
+}  // namespace
+
+Vec3 constraint_end_position(const ConstraintPoint& end, const std::vector<BodyWorkspace>& bodies,
+                             const Model& model, const VecX& q) {
+  if (end.body < 0) return end.point;
+  const BodyWorkspace& bw = bodies[end.body];
+  if (end.node >= 0) return bw.x[end.node];
+  // x = c + R p (3.3) for a point fixed in the frame.
+  return q.segment<3>(model.bodies[end.body].q_offset) + bw.R * end.point;
+}
+
+Vec3 constraint_end_velocity(const ConstraintPoint& end, const std::vector<BodyWorkspace>& bodies,
+                             const Model& model, const VecX& v) {
+  if (end.body < 0) return Vec3::Zero();
+  const BodyWorkspace& bw = bodies[end.body];
+  if (end.node >= 0) return bw.x_dot[end.node];
+  const int offset = model.bodies[end.body].v_offset;
+  const Vec3 omega = v.segment<3>(offset + 3);
+  return v.segment<3>(offset) + bw.R * omega.cross(end.point);
+}
+
+Vec3 constraint_end_rate(const ConstraintPoint& end, const std::vector<BodyWorkspace>& bodies,
+                         const Model& model, const VecX& rates) {
+  if (end.body < 0) return Vec3::Zero();
+  const BodyModel& body = model.bodies[end.body];
+  const BodyWorkspace& bw = bodies[end.body];
+  const auto r = rates.segment(body.v_offset, body.v_size);
+  const Vec3 p = body_point(end, bw);
+  const Vec3 turn = r.segment<3>(3);  // omega-dot, or omega for first-order bodies
+  Vec3 local = turn.cross(p);
+  if (end.node >= 0) {
+    if (body.n_s > 0) local += J_times(bw, end.node, r.data() + 6);
+    if (body.has_local) local += r.segment<3>(6 + body.n_s + 3 * end.node);
+    if (body.order == DynamicsOrder::second) local += bw.a_vp[end.node];
+  } else if (body.order == DynamicsOrder::second) {
+    local += bw.omega.cross(bw.omega.cross(p));  // (3.18) for a point fixed in the frame
+  }
+  return r.segment<3>(0) + bw.R * local;
+}
+
+void constraint_end_jacobian_transpose(const ConstraintPoint& end, const BodyModel& body,
+                                       const BodyWorkspace& bw, MatX& G) {
+  // Column j of P^T R^T is P^T y for y = R^T e_j: (y, p x y, J^T y).
+  const Vec3 p = body_point(end, bw);
+  G.setZero();
+  for (int j = 0; j < 3; ++j) {
+    const Vec3 y = bw.R.row(j).transpose();
+    G.block<3, 1>(0, j) = y;
+    G.block<3, 1>(3, j) = p.cross(y);
+    if (end.node >= 0 && body.n_s > 0) add_Jt_y(bw, end.node, y, 1.0, G.col(j).data() + 6);
+  }
+}
+
+void add_generalized_rate(const BodyModel& body, const BodyWorkspace& bw, const VecX& delta,
+                          VecX& rates) {
+  auto r = rates.segment(body.v_offset, 6 + body.n_s);
+  r.segment<3>(0) += bw.R * delta.segment<3>(0);
+  r.segment<3>(3) += delta.segment<3>(3);
+  if (body.n_s > 0) r.segment(6, body.n_s) += delta.segment(6, body.n_s);
+}
+
+}  // namespace pbm

@@ -1,0 +1,404 @@
+// Point-to-point constraints with Baumgarte stabilization (ch. 7): the point Jacobian against
+// finite differences, the decay rate of self-assembly (7.16), conservation of momentum and energy
+// through the constraint forces (7.9), the solver choices of sec. 7.3.2 agreeing, loops and stiff
+// gains reported, and the extremes (a 1,000-link chain, alpha = 0, coincident anchors).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "constrain/hinge_spring.h"
+#include "constrain/point_constraint.h"
+#include "scene/scene_json.h"
+#include "scene_builders.h"
+#include "sim/state.h"
+
+namespace pbm {
+namespace {
+
+using test::Simulation;
+
+BodyDef part(const std::string& name, DeformLevel level, const Vec3& position, Real a0 = 0.2) {
+  BodyDef b = test::ball(level, 4);
+  b.name = name;
+  b.q_s[0] = a0;
+  b.q_s0 = b.q_s;
+  b.position = position;
+  b.material.mass = 1.0;
+  return b;
+}
+
+ConstraintEndDef body_point(int body, const Vec3& p) {
+  ConstraintEndDef end;
+  end.body = body;
+  end.point = p;
+  return end;
+}
+
+ConstraintEndDef body_node(int body, int node) {
+  ConstraintEndDef end;
+  end.body = body;
+  end.node = node;
+  return end;
+}
+
+ConstraintEndDef world(const Vec3& x) {
+  ConstraintEndDef end;
+  end.world = x;
+  return end;
+}
+
+ConstraintDef joint(const ConstraintEndDef& a, const ConstraintEndDef& b) {
+  ConstraintDef c;
+  c.name = "joint";
+  c.a = a;
+  c.b = b;
+  return c;
+}
+
+void advance_to(Simulation& sim, Real t) {
+  while (sim.state.time < t - 1e-12) {
+    const FrameResult r = advance_frame(sim.model, sim.state, sim.ws);
+    ASSERT_TRUE(r.ok) << r.message;
+  }
+}
+
+Real violation(Simulation& sim) {
+  FrameStats stats;
+  measure_state(sim.model, sim.state, sim.ws, stats);
+  return stats.constraint_violation;
+}
+
+// Two free parts whose joint starts 0.64 m open; nothing else acts. rk4: explicit Euler leaves a
+// floor of |C| proportional to dt (2e-5 m at 1 ms, 2e-6 m at 0.1 ms here, with alpha = 5), where
+// its O(dt^2) position error per step on the turning parts balances Baumgarte's feedback.
+Scene assembly_scene(DynamicsOrder order, Real alpha) {
+  Scene s;
+  s.gravity = Vec3::Zero();
+  s.solver.dt = 1e-3;
+  s.solver.integrator =
+      order == DynamicsOrder::second ? IntegratorKind::rk4 : IntegratorKind::euler;
+  s.solver.fps = 50;
+  s.solver.constraint_alpha = alpha;
+  s.bodies.push_back(part("a", DeformLevel::rigid, Vec3(-0.5, 0, 0)));
+  s.bodies.push_back(part("b", DeformLevel::rigid, Vec3(0.5, 0.2, 0.1)));
+  for (BodyDef& b : s.bodies) {
+    b.order = order;
+    b.material.damping = order == DynamicsOrder::first ? 2.0 : 0.0;
+  }
+  s.constraints.push_back(joint(body_point(0, Vec3(0.2, 0, 0)), body_point(1, Vec3(-0.2, 0, 0))));
+  return s;
+}
+
+// Fits ln |C| against t over [t0, t1] sampled each frame: the decay rate [1/s].
+Real measured_decay_rate(Simulation& sim, Real t0, Real t1) {
+  advance_to(sim, t0);
+  Real st = 0, sy = 0, stt = 0, sty = 0;
+  int n = 0;
+  while (sim.state.time < t1 - 1e-12) {
+    const Real y = std::log(violation(sim));
+    const Real t = sim.state.time;
+    st += t;
+    sy += y;
+    stt += t * t;
+    sty += t * y;
+    ++n;
+    advance_to(sim, sim.state.time + 1.0 / sim.model.solver.fps);
+  }
+  return -(n * sty - st * sy) / (n * stt - st * st);
+}
+
+TEST(Constraints, JacobianMatchesFiniteDifferences) {
+  // A globally deforming part with a node end and a frame point end: x-dot = L q-dot must be the
+  // derivative of x along q-dot, and G^T nu_g (G = L^T) the same velocity.
+  Scene s = assembly_scene(DynamicsOrder::second, 10);
+  s.bodies[0] = part("a", DeformLevel::global, Vec3(0.1, -0.2, 0.3));
+  s.bodies[0].orientation = Vec4(0.9, 0.1, -0.3, 0.2).normalized();
+  s.constraints[0].a = body_node(0, 7);
+  s.constraints.push_back(joint(body_point(0, Vec3(0.1, 0.2, -0.3)), world(Vec3(1, 1, 1))));
+  Simulation sim(s);
+  const BodyModel& body = sim.model.bodies[0];
+  VecX v = VecX::Zero(sim.model.n_v);
+  for (int i = 0; i < body.v_size; ++i) v[i] = std::sin(1.7 * i + 0.3);
+  VecX q = sim.state.q;
+  std::vector<BodyWorkspace>& bw = sim.ws.bodies;
+  auto kinematics = [&](const VecX& qq, const VecX& vv) {
+    compute_body_kinematics(body, qq.segment(0, body.q_size), vv.segment(0, body.v_size), bw[0]);
+  };
+  kinematics(q, v);
+  VecX q_dot = VecX::Zero(sim.model.n_q);
+  q_dot.segment<3>(0) = v.segment<3>(0);
+  q_dot.segment<4>(3) = quaternion_rate(q.segment<4>(3), v.segment<3>(3));
+  q_dot.segment(7, body.n_s) = v.segment(6, body.n_s);
+  const VecX nu_g = [&] {
+    VecX g = v.head(body.n_generalized());
+    g.segment<3>(0) = bw[0].R.transpose() * v.segment<3>(0);
+    return g;
+  }();
+  for (const PointConstraintModel& c : sim.model.constraints.points) {
+    kinematics(q, v);
+    const Vec3 velocity = constraint_end_velocity(c.ends[0], bw, sim.model, v);
+    MatX G(body.n_generalized(), 3);
+    constraint_end_jacobian_transpose(c.ends[0], body, bw[0], G);
+    const Vec3 from_G = G.transpose() * nu_g;
+    const Real h = 1e-6;
+    VecX qp = q + h * q_dot, qm = q - h * q_dot;
+    kinematics(qp, v);
+    const Vec3 xp = constraint_end_position(c.ends[0], bw, sim.model, qp);
+    kinematics(qm, v);
+    const Vec3 xm = constraint_end_position(c.ends[0], bw, sim.model, qm);
+    const Vec3 fd = (xp - xm) / (2 * h);
+    std::printf("end %s: |L q-dot - finite difference| = %.3g, |G^T nu - L q-dot| = %.3g\n",
+                c.ends[0].node >= 0 ? "node" : "point", (velocity - fd).norm(),
+                (from_G - velocity).norm());
+    EXPECT_LT((velocity - fd).norm(), 1e-7 * velocity.norm());
+    EXPECT_LT((from_G - velocity).norm(), 1e-12 * velocity.norm());
+  }
+}
+
+TEST(Constraints, SelfAssemblyDecaysAtAlpha) {
+  // Second order, alpha = beta, C-dot(0) = 0: C = C0 (1 + alpha t) e^(-alpha t), whose log slope
+  // over alpha t in [10, 20] is alpha (1 - ln(21/11) / 10) = 0.935 alpha. First order: exactly
+  // e^(-alpha t) (7.16).
+  const Real alpha = 5;
+  Simulation second(assembly_scene(DynamicsOrder::second, alpha));
+  const Real c0 = violation(second);
+  const Real rate = measured_decay_rate(second, 10 / alpha, 20 / alpha);
+  std::printf("second order: |C(0)| = %.3f m, decay rate %.4f 1/s for alpha %.1f (%.4f alpha)\n",
+              c0, rate, alpha, rate / alpha);
+  EXPECT_NEAR(rate, alpha, 0.1 * alpha);
+  Simulation first(assembly_scene(DynamicsOrder::first, alpha));
+  const Real rate1 = measured_decay_rate(first, 0.2, 3.0);
+  std::printf("first order: decay rate %.4f 1/s for alpha %.1f (%.4f alpha)\n", rate1, alpha,
+              rate1 / alpha);
+  EXPECT_NEAR(rate1, alpha, 0.02 * alpha);
+  EXPECT_LT(violation(first), 1e-4);
+}
+
+TEST(Constraints, TwoFreeRigidBodiesConserveLinearMomentum) {
+  Scene s = assembly_scene(DynamicsOrder::second, 8);
+  s.bodies[0].velocity = Vec3(1, -0.5, 0.2);
+  s.bodies[0].angular_velocity = Vec3(0.3, 2, -1);
+  s.bodies[1].velocity = Vec3(-0.2, 0.4, 1);
+  s.bodies[1].material.mass = 3.0;
+  Simulation sim(s);
+  auto momentum = [&] {
+    Vec3 p = Vec3::Zero();
+    for (std::size_t b = 0; b < sim.model.bodies.size(); ++b) {
+      const BodyModel& body = sim.model.bodies[b];
+      const auto q = sim.state.q.segment(body.q_offset, body.q_size);
+      const auto v = sim.state.v.segment(body.v_offset, body.v_size);
+      compute_body_kinematics(body, q, v, sim.ws.bodies[b]);
+      p += compute_body_energy(body, q, v, Vec3::Zero(), sim.ws.bodies[b]).linear_momentum;
+    }
+    return p;
+  };
+  const Vec3 p0 = momentum();
+  advance_to(sim, 3.0);
+  const Vec3 p1 = momentum();
+  const Real relative = (p1 - p0).norm() / p0.norm();
+  std::printf("linear momentum drift over 3 s of assembly and tumbling: %.3g relative\n", relative);
+  EXPECT_LT(relative, 1e-9);
+  EXPECT_LT(violation(sim), 1e-4);
+}
+
+// Two rigid parts hanging from a world anchor by massless links through points fixed in their
+// frames, released horizontally.
+Scene double_pendulum(IntegratorKind integrator, Real dt) {
+  Scene s;
+  s.solver.dt = dt;
+  s.solver.integrator = integrator;
+  s.solver.fps = 50;
+  s.solver.constraint_alpha = 10;
+  s.bodies.push_back(part("upper", DeformLevel::rigid, Vec3(0.5, 0, 2), 0.1));
+  s.bodies.push_back(part("lower", DeformLevel::rigid, Vec3(1.0, 0, 2), 0.1));
+  for (BodyDef& b : s.bodies) b.material.damping = 0;
+  s.constraints.push_back(joint(body_point(0, Vec3(-0.5, 0, 0)), world(Vec3(0, 0, 2))));
+  s.constraints.push_back(joint(body_point(0, Vec3(0.25, 0, 0)), body_point(1, Vec3(-0.25, 0, 0))));
+  return s;
+}
+
+TEST(Constraints, UndampedDoublePendulumConservesEnergy) {
+  // rk4, dt = 1 ms, alpha = 10: the energy scale is the drop of both parts by their link
+  // lengths, m g (0.5 + 1.0) per part summed.
+  Simulation sim(double_pendulum(IntegratorKind::rk4, 1e-3));
+  FrameStats s0;
+  measure_state(sim.model, sim.state, sim.ws, s0);
+  const Real scale = 9.81 * (1.0 * 0.5 + 1.0 * 1.0) + 9.81 * 1.0 * 0.5;
+  Real worst = 0, worst_c = 0;
+  while (sim.state.time < 10.0 - 1e-9) {
+    const FrameResult r = advance_frame(sim.model, sim.state, sim.ws);
+    ASSERT_TRUE(r.ok) << r.message;
+    const Real e = r.stats.kinetic + r.stats.potential - s0.kinetic - s0.potential;
+    worst = std::max(worst, std::abs(e) / scale);
+    worst_c = std::max(worst_c, r.stats.constraint_violation);
+  }
+  std::printf(
+      "double pendulum, rk4 dt 1 ms, 10 s: max |E - E0| / (m g L) = %.3g, max |C| = %.3g m\n",
+      worst, worst_c);
+  EXPECT_LT(worst, 1e-3);
+  EXPECT_LT(worst_c, 1e-4);
+}
+
+TEST(Constraints, DenseAndSparseSolversAgreeAndRunsAreBitIdentical) {
+  Scene s = double_pendulum(IntegratorKind::euler, 1e-3);
+  s.bodies[1].level = DeformLevel::local;  // a deformable part too
+  s.constraints[1].b = body_node(1, 3);
+  Simulation dense(s);
+  s.solver.constraint_solver = ConstraintSolverKind::sparse;
+  Simulation sparse(s);
+  Simulation again(s);
+  advance_to(dense, 1.0);
+  advance_to(sparse, 1.0);
+  advance_to(again, 1.0);
+  EXPECT_EQ(hash_state(sparse.state), hash_state(again.state));
+  const Real difference = (dense.state.q - sparse.state.q).cwiseAbs().maxCoeff();
+  std::printf("dense vs sparse after 1 s: max |q difference| = %.3g\n", difference);
+  EXPECT_LT(difference, 1e-9);
+  EXPECT_TRUE(sparse.ws.constraints.sparse);
+  EXPECT_FALSE(dense.ws.constraints.sparse);
+}
+
+TEST(Constraints, LoopFallsBackToDenseAndStiffGainsAreReported) {
+  Scene s;
+  s.gravity = Vec3::Zero();
+  s.solver.constraint_solver = ConstraintSolverKind::sparse;
+  for (int i = 0; i < 3; ++i)
+    s.bodies.push_back(part("p" + std::to_string(i), DeformLevel::rigid, Vec3(i, 0, 0)));
+  s.constraints.push_back(joint(body_point(0, Vec3(0.5, 0, 0)), body_point(1, Vec3(-0.5, 0, 0))));
+  s.constraints.push_back(joint(body_point(1, Vec3(0.5, 0, 0)), body_point(2, Vec3(-0.5, 0, 0))));
+  const Model tree = build_model(s);
+  EXPECT_EQ(tree.constraints.solver, ConstraintSolverKind::sparse);
+  EXPECT_FALSE(tree.constraints.has_loop);
+  EXPECT_TRUE(tree.constraints.notes.empty());
+  s.constraints.push_back(joint(body_point(2, Vec3(0, 0.2, 0)), body_point(0, Vec3(0, 0.2, 0))));
+  s.solver.constraint_alpha = 600;  // alpha dt = 0.6 with Euler at 1 ms
+  Simulation loop(s);
+  EXPECT_TRUE(loop.model.constraints.has_loop);
+  EXPECT_EQ(loop.model.constraints.solver, ConstraintSolverKind::dense);
+  const FrameResult r = advance_frame(loop.model, loop.state, loop.ws);
+  EXPECT_NE(r.stats.notes.find("closes a loop"), std::string::npos) << r.stats.notes;
+  EXPECT_NE(r.stats.notes.find("stiff"), std::string::npos) << r.stats.notes;
+}
+
+TEST(Constraints, ThousandLinkChainRunsAndStaysBounded) {
+  // 1,000 constraints: a chain of 1,000 small rigid parts hanging from a world anchor, swinging
+  // under gravity from horizontal, solved by the sparse LDL^T.
+  Scene s;
+  s.solver.dt = 1e-3;
+  s.solver.fps = 50;
+  s.solver.constraint_solver = ConstraintSolverKind::sparse;
+  const int n = 1000;
+  const Real link = 0.01;
+  for (int i = 0; i < n; ++i) {
+    BodyDef b =
+        part("link" + std::to_string(i), DeformLevel::rigid, Vec3((i + 0.5) * link, 0, 0), 0.004);
+    b.tessellation.rings = 2;
+    b.tessellation.segments = 3;
+    b.material.mass = 0.01;
+    s.bodies.push_back(b);
+  }
+  s.constraints.push_back(joint(body_point(0, Vec3(-0.5 * link, 0, 0)), world(Vec3::Zero())));
+  for (int i = 0; i + 1 < n; ++i) {
+    s.constraints.push_back(
+        joint(body_point(i, Vec3(0.5 * link, 0, 0)), body_point(i + 1, Vec3(-0.5 * link, 0, 0))));
+  }
+  Simulation sim(s);
+  Real worst = 0;
+  for (int f = 0; f < 10; ++f) {
+    const FrameResult r = advance_frame(sim.model, sim.state, sim.ws);
+    ASSERT_TRUE(r.ok) << r.message;
+    worst = std::max(worst, r.stats.constraint_violation);
+    EXPECT_TRUE(sim.state.q.allFinite());
+  }
+  std::printf("1000-link chain, 0.2 s: max |C| = %.3g m, lowest link at z = %.3f m\n", worst,
+              sim.state.q[sim.model.bodies[n - 1].q_offset + 2]);
+  EXPECT_LT(worst, 1e-3);
+  EXPECT_LT(sim.state.q[sim.model.bodies[n - 1].q_offset + 2], -0.05);  // it fell
+}
+
+TEST(Constraints, AlphaZeroReportsTheDriftWithoutFailing) {
+  // Without stabilization (alpha = beta = 0) C-ddot = 0 is enforced: an open joint stays open
+  // and the stats say by how much.
+  Simulation sim(assembly_scene(DynamicsOrder::second, 0));
+  const Real c0 = violation(sim);
+  advance_to(sim, 1.0);
+  const Real c1 = violation(sim);
+  std::printf("alpha = 0: |C| %.6f m -> %.6f m after 1 s\n", c0, c1);
+  EXPECT_TRUE(sim.state.q.allFinite());
+  EXPECT_NEAR(c1, c0, 1e-6);
+}
+
+TEST(Constraints, CoincidentAnchorsStartSatisfiedWithoutNaN) {
+  Scene s;
+  s.solver.dt = 1e-3;
+  s.bodies.push_back(part("a", DeformLevel::rigid, Vec3(0, 0, 1)));
+  s.bodies.push_back(part("b", DeformLevel::local, Vec3(0, 0, 1)));
+  // Both ends at the same world point from the start: C = 0, C-dot = 0; and a body point pinned
+  // at its own position.
+  s.constraints.push_back(joint(body_point(0, Vec3::Zero()), body_point(1, Vec3::Zero())));
+  s.constraints.push_back(joint(body_point(0, Vec3::Zero()), world(Vec3(0, 0, 1))));
+  Simulation sim(s);
+  EXPECT_EQ(violation(sim), 0.0);
+  advance_to(sim, 0.5);
+  EXPECT_TRUE(sim.state.q.allFinite());
+  EXPECT_TRUE(sim.ws.constraints.f_c.allFinite());
+  EXPECT_LT(violation(sim), 1e-6);
+}
+
+TEST(Constraints, HingeSpringOscillatesAboutItsAxis) {
+  // A rigid plank hinged to the world about y with a rotational spring k, twisted by 0.3 rad from
+  // rest: it swings about the axis at omega^2 = k / I_yy, the pivot stays put.
+  Scene s;
+  s.gravity = Vec3::Zero();
+  s.solver.dt = 1e-3;
+  s.solver.fps = 1000;
+  s.solver.integrator = IntegratorKind::rk4;
+  BodyDef plank = part("plank", DeformLevel::rigid, Vec3(0, 0, 1), 1.0);
+  plank.q_s[1] = 1.0;
+  plank.q_s[2] = 0.2;
+  plank.q_s[3] = 0.05;
+  plank.q_s0 = plank.q_s;
+  plank.material.damping = 0;
+  s.bodies.push_back(plank);
+  ConstraintDef hinge = joint(body_point(0, Vec3::Zero()), world(Vec3(0, 0, 1)));
+  hinge.kind = ConstraintKind::hinge;
+  hinge.axis = Vec3::UnitY();
+  hinge.stiffness = 50;
+  hinge.rest_angle = 0.3;
+  s.constraints.push_back(hinge);
+  Simulation sim(s);
+  ASSERT_EQ(sim.model.constraints.points.size(), 2u);
+  const Real inertia = [&] {
+    const BodyModel& b = sim.model.bodies[0];
+    Real I = 0;
+    for (int i = 0; i < b.n_nodes(); ++i) {
+      const Vec3& p = b.s_fixed[i];
+      I += b.node_mass[i] * (p.x() * p.x() + p.z() * p.z());
+    }
+    return I;
+  }();
+  const Real period = 2 * std::acos(-1.0) * std::sqrt(inertia / 50);
+  FrameStats s0;
+  measure_state(sim.model, sim.state, sim.ws, s0);
+  Real lowest = 1e300, highest = -1e300;
+  while (sim.state.time < period - 1e-9) {
+    advance_to(sim, sim.state.time + 1e-3);
+    const Real theta = hinge_angle(sim.model.constraints.hinges[0], sim.ws.bodies);
+    lowest = std::min(lowest, theta);
+    highest = std::max(highest, theta);
+  }
+  FrameStats s1;
+  measure_state(sim.model, sim.state, sim.ws, s1);
+  std::printf("hinge: theta in [%.4f, %.4f] over one period %.3f s, energy %.5f -> %.5f J\n",
+              lowest, highest, period, s0.elastic + s0.kinetic, s1.elastic + s1.kinetic);
+  EXPECT_NEAR(highest, 0.6, 1e-3);
+  EXPECT_NEAR(lowest, 0.0, 1e-3);
+  EXPECT_LT((sim.state.q.segment<3>(0) - Vec3(0, 0, 1)).norm(), 1e-4);
+  EXPECT_NEAR(s1.elastic + s1.kinetic, s0.elastic + s0.kinetic, 1e-3 * s0.elastic);
+}
+
+}  // namespace
+}  // namespace pbm
