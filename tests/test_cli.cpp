@@ -65,7 +65,8 @@ std::string ball(const std::string& eps1, const std::string& w1, const std::stri
 }
 
 TEST(Cli, ValidateAcceptsEveryShippedScene) {
-  for (const char* name : {"jello-ball", "rugby-ball", "morphing-shell", "interactive"}) {
+  for (const char* name : {"jello-ball", "rugby-ball", "morphing-shell", "interactive", "snowman",
+                           "dragonfly", "seesaw"}) {
     const Result r = pbm("validate " + scene(name));
     EXPECT_EQ(r.code, 0) << name << ": " << r.output;
   }
@@ -119,6 +120,11 @@ TEST(Cli, BadInputExitsTwoNamingFileAndField) {
       {"negative-mass.json", ball("1.0", "15", "-2"), "bodies[0].material.mass: must be > 0"},
       {"eps-zero.json", ball("0.0", "15", "1"), "bodies[0].shape.q_s.eps1"},
       {"w1-negative.json", ball("1.0", "-1", "1"), "bodies[0].material.w1"},
+      {"constraint-missing-body.json",
+       "{\"bodies\": [{\"name\": \"b\", \"material\": {\"mass\": 1}}], \"constraints\": "
+       "[{\"name\": \"neck\", \"a\": {\"body\": \"head\", \"node\": 0}, "
+       "\"b\": {\"world\": [0, 0, 1]}}]}",
+       "constraints[0].a.body: unknown body 'head'"},
   };
   for (const BadInput& c : cases) {
     const std::string path = write_scene(c.name, c.text);
