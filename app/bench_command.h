@@ -10,6 +10,7 @@ struct BenchOptions {
   std::string what;
   int steps = 40;
   int max_nodes = 16386;
+  int max_constraints = 1000;  // `pbm bench constraints`: largest k
   std::string scene = "scenes/jello-ball.json";
 };
 

@@ -40,10 +40,14 @@ int main(int argc, char** argv) {
 
   pbm::BenchOptions bench;
   auto* bench_cmd = app.add_subcommand(
-      "bench", "benchmarks: deform (ours vs Bullet btSoftBody), render (ours vs a bare draw)");
-  bench_cmd->add_option("what", bench.what, "deform | render")->required();
+      "bench",
+      "benchmarks: deform (ours vs Bullet btSoftBody), render (ours vs a bare draw), "
+      "constraints (dense vs sparse constraint solve)");
+  bench_cmd->add_option("what", bench.what, "deform | render | constraints")->required();
   bench_cmd->add_option("--steps", bench.steps, "steps timed per size");
   bench_cmd->add_option("--max-nodes", bench.max_nodes, "largest node count to run");
+  bench_cmd->add_option("--max-constraints", bench.max_constraints,
+                        "constraints: largest number of constraints to run");
 
   try {
     app.parse(argc, argv);
