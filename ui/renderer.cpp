@@ -21,6 +21,7 @@ constexpr int kShadowSize = 1024;
 // A 1024² map resolves about this many triangles of one body; more only cost time
 // (shadow_casters.h).
 constexpr std::size_t kMaxShadowCasterTriangles = 4096;
+constexpr float kConstraintRedViolation = 0.01f;                       // [m]
 const Vec3f kKeyDirection = Vec3f(0.45f, -0.35f, 0.82f).normalized();  // towards the key light
 const Vec3f kFillDirection = Vec3f(-0.7f, 0.4f, 0.3f).normalized();
 
@@ -323,6 +324,10 @@ struct Renderer::Impl {
       vertex(spring.from, Vec3f::UnitZ());
       vertex(spring.to, Vec3f::UnitZ());
     }
+    for (const ConstraintSnapshot& c : s.constraints) {  // right after the springs
+      vertex(c.a, Vec3f::UnitZ());
+      vertex(c.b, Vec3f::UnitZ());
+    }
     if (!vertices.empty()) upload_vertices(scratch, vertices);
   }
 
@@ -563,6 +568,24 @@ void Renderer::render(const Snapshot& s, const Camera& camera, const RenderOptio
     gl.DrawArrays(GL_LINES, springs_first, n);
     r.set(r.line, "u_point_size", 7.0f);
     gl.DrawArrays(GL_POINTS, springs_first, n);
+    gl.Disable(GL_PROGRAM_POINT_SIZE);
+    gl.Enable(GL_DEPTH_TEST);
+  }
+  if (!s.constraints.empty()) {
+    // Constraints join points on or inside the parts: drawn over them, green when held, turning
+    // red as the violation |C| reaches kConstraintRedViolation.
+    gl.Disable(GL_DEPTH_TEST);
+    gl.Enable(GL_PROGRAM_POINT_SIZE);
+    gl.BindVertexArray(r.scratch.vao);
+    r.set(r.line, "u_point_size", 5.0f);
+    const GLint constraints_first = springs_first + static_cast<GLint>(2 * s.springs.size());
+    for (std::size_t k = 0; k < s.constraints.size(); ++k) {
+      const float t = std::clamp(s.constraints[k].violation / kConstraintRedViolation, 0.0f, 1.0f);
+      r.set(r.line, "u_color", Vec3f(0.25f + 0.7f * t, 0.9f - 0.7f * t, 0.35f - 0.15f * t));
+      const auto at = constraints_first + static_cast<GLint>(2 * k);
+      gl.DrawArrays(GL_LINES, at, 2);
+      gl.DrawArrays(GL_POINTS, at, 2);
+    }
     gl.Disable(GL_PROGRAM_POINT_SIZE);
     gl.Enable(GL_DEPTH_TEST);
   }

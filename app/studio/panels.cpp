@@ -123,9 +123,9 @@ void field(Studio& studio, StudioActions& actions, const std::string& key, const
   ImGui::PopID();
 }
 
-const char* const kCollections[] = {"bodies", "obstacles", "springs", "tracks"};
+const char* const kCollections[] = {"bodies", "obstacles", "springs", "constraints", "tracks"};
 const SelectionKind kKinds[] = {SelectionKind::body, SelectionKind::obstacle, SelectionKind::spring,
-                                SelectionKind::track};
+                                SelectionKind::constraint, SelectionKind::track};
 
 std::string selection_pointer(const Selection& s) {
   switch (s.kind) {
@@ -137,6 +137,8 @@ std::string selection_pointer(const Selection& s) {
       return "/springs/" + std::to_string(s.index);
     case SelectionKind::track:
       return "/tracks/" + std::to_string(s.index);
+    case SelectionKind::constraint:
+      return "/constraints/" + std::to_string(s.index);
     case SelectionKind::solver:
       return "/solver";
     case SelectionKind::scene:
@@ -154,7 +156,7 @@ void outliner(Studio& studio, StudioActions& actions, const json& scene) {
   if (ImGui::Selectable("Solver", studio.selection.kind == SelectionKind::solver)) {
     studio.selection = {SelectionKind::solver, -1};
   }
-  for (int c = 0; c < 4; ++c) {
+  for (int c = 0; c < static_cast<int>(std::size(kCollections)); ++c) {
     const char* collection = kCollections[c];
     const json items = scene.contains(collection) ? scene[collection] : json::array();
     ImGui::SetNextItemOpen(true, ImGuiCond_Once);
@@ -341,6 +343,22 @@ void stats(Studio& studio) {
     float ms = 0;
     for (float x : p.step_ms) ms += x;
     cost.push_back(ms);
+  }
+  // Per-constraint violation, the worst first (ch. 7: |C| should decay as e^(-alpha t)).
+  if (studio.snapshot && !studio.snapshot->constraints.empty() && studio.status.scene) {
+    std::vector<const ConstraintSnapshot*> worst;
+    for (const ConstraintSnapshot& c : studio.snapshot->constraints) worst.push_back(&c);
+    std::stable_sort(worst.begin(), worst.end(),
+                     [](const auto* a, const auto* b) { return a->violation > b->violation; });
+    const auto& defs = studio.status.scene->constraints;
+    ImGui::Text("constraints: %zu points, worst |C|:", worst.size());
+    for (std::size_t k = 0; k < std::min<std::size_t>(5, worst.size()); ++k) {
+      const int source = worst[k]->source;
+      const std::string name = source >= 0 && source < static_cast<int>(defs.size())
+                                   ? defs[source].name
+                                   : std::to_string(source);
+      ImGui::Text("  %-18s %.3g m", name.c_str(), worst[k]->violation);
+    }
   }
   const ImVec2 size(ImGui::GetContentRegionAvail().x, 40);
   if (!kinetic.empty()) {

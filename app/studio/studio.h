@@ -13,7 +13,7 @@
 
 namespace pbm {
 
-enum class SelectionKind { none, body, obstacle, spring, track, solver, scene };
+enum class SelectionKind { none, body, obstacle, spring, constraint, track, solver, scene };
 struct Selection {
   SelectionKind kind = SelectionKind::none;
   int index = -1;

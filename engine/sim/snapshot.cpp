@@ -65,6 +65,20 @@ Snapshot make_snapshot(const Model& model, const State& state, const Inputs& inp
     if (spring.node < 0 || spring.node >= static_cast<int>(x.size())) continue;
     snap.springs.push_back({x[spring.node].cast<float>(), spring.target.cast<float>()});
   }
+  // Where each end of a constraint is now (the kinematics above are current): a node, a point
+  // fixed in the body frame, or a world anchor.
+  auto end_point = [&](const ConstraintPoint& end) -> Vec3 {
+    if (end.body < 0) return end.point;
+    const BodyModel& body = model.bodies[end.body];
+    if (end.node >= 0) return ws.bodies[end.body].x[end.node];
+    const auto q = state.q.segment(body.q_offset, 7);
+    return q.head<3>() + rotation_from_quaternion(q.segment<4>(3)) * end.point;
+  };
+  for (const PointConstraintModel& c : model.constraints.points) {
+    const Vec3 a = end_point(c.ends[0]), b = end_point(c.ends[1]);
+    snap.constraints.push_back(
+        {a.cast<float>(), b.cast<float>(), static_cast<float>((a - b).norm()), c.source});
+  }
   return snap;
 }
 

@@ -42,11 +42,19 @@ struct SpringSnapshot {
   Vec3f from = Vec3f::Zero(), to = Vec3f::Zero();  // body point, target
 };
 
+// A point-to-point constraint (ch. 7) between its two current points; violation = |C| [m].
+struct ConstraintSnapshot {
+  Vec3f a = Vec3f::Zero(), b = Vec3f::Zero();
+  float violation = 0;
+  int source = 0;  // index into Scene::constraints (a hinge's two points share one)
+};
+
 struct Snapshot {
   double time = 0;
   std::vector<BodySnapshot> bodies;
   std::vector<ObstacleSnapshot> obstacles;
   std::vector<SpringSnapshot> springs;
+  std::vector<ConstraintSnapshot> constraints;
   // Axis-aligned bounds of the bodies [m].
   Vec3f bodies_min() const;
   Vec3f bodies_max() const;
