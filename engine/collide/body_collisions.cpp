@@ -240,6 +240,16 @@ void make_basis(const Vec3& n, Mat3& basis) {
   basis.col(2) = n.cross(t1);
 }
 
+// Parts joined by a constraint (ch. 7) touch at the joint by design: colliding them would fight
+// the constraint force (Bullet's "disable collisions between linked bodies" does the same).
+bool joined(const Model& model, int a, int b) {
+  for (const PointConstraintModel& c : model.constraints.points) {
+    const int p = c.ends[0].body, q = c.ends[1].body;
+    if ((p == a && q == b) || (p == b && q == a)) return true;
+  }
+  return false;
+}
+
 // Steps 1 and 2: candidate triangle pairs, their intersection test, node candidates.
 void gather_candidates(const Model& model, BodyCollisionWorkspace& cws,
                        const BodyCollisionOptions& options, BodyCollisionStats& stats) {
@@ -250,6 +260,7 @@ void gather_candidates(const Model& model, BodyCollisionWorkspace& cws,
       const bool self = a == b;
       if (self && !(options.self_collision && model.bodies[a].has_local)) continue;
       if (!self && !cws.broadphase.body_boxes[a].overlaps(cws.broadphase.body_boxes[b])) continue;
+      if (!self && joined(model, a, b)) continue;
       cws.pairs.clear();
       collect_triangle_pairs(a, b, cws.broadphase, cws.pairs);
       const auto& tri_a = model.bodies[a].tessellation.triangles;

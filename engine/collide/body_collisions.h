@@ -40,6 +40,7 @@
 #include <array>
 #include <vector>
 
+#include "collide/body_collision_options.h"
 #include "collide/surface_broadphase.h"
 #include "core/types.h"
 #include "sim/model.h"
@@ -48,19 +49,6 @@ namespace pbm {
 
 struct State;
 struct Workspace;
-
-struct BodyCollisionOptions {
-  bool enabled = true;
-  // Proximity band [m]: triangles' boxes are fattened by it, and pairs closer than it are
-  // contacts (speculative while apart). Small against the triangles' size.
-  Real margin = 0.02;
-  // A node found farther than this behind a face is taken for one on the far side of a thin
-  // part, not a contact [m]. Larger than the deepest penetration one step can make.
-  Real max_depth = 0.1;
-  Real friction = 0.3;  // b_f of (5.13), >= 0
-  bool self_collision = true;
-  int iterations = 16;  // Gauss-Seidel sweeps of the impulses, and passes of the projection
-};
 
 // Cost and outcome of one call.
 struct BodyCollisionStats {

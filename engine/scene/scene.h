@@ -149,6 +149,11 @@ struct SolverDef {
   Real constraint_alpha = 10.0;         // Baumgarte alpha of (7.14) [1/s], >= 0
   std::optional<Real> constraint_beta;  // Baumgarte beta [1/s], >= 0; absent: = alpha (7.16)
   ConstraintSolverKind constraint_solver = ConstraintSolverKind::dense;
+  // Collisions between bodies (sec. 5.2.2); parts joined by a constraint never collide.
+  bool body_collisions = true;
+  bool self_collision = false;   // a local body with itself (folds); node-face pairs only
+  Real body_friction = 0.3;      // b_f of (5.13) between bodies, in [0, 1]
+  Real collision_margin = 0.02;  // contact band [m], > 0
 };
 
 // Where the renderer looks from (position, target, up) and its vertical field of view. Scenes

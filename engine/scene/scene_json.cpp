@@ -564,7 +564,8 @@ SolverDef parse_solver(const JsonNode& node) {
   require_object(node,
                  {"dt", "integrator", "tolerance", "fps", "duration", "contact_step_reduction",
                   "contact_dt_factor", "max_retries", "energy_growth_bound", "constraint_alpha",
-                  "constraint_beta", "constraint_solver"});
+                  "constraint_beta", "constraint_solver", "body_collisions", "self_collision",
+                  "body_friction", "collision_margin"});
   SolverDef solver;
   if (auto dt = find_child(node, "dt")) solver.dt = require_positive(*dt, read_real(*dt));
   if (auto integrator = find_child(node, "integrator")) {
@@ -605,6 +606,14 @@ SolverDef parse_solver(const JsonNode& node) {
   }
   if (auto kind = find_child(node, "constraint_solver")) {
     solver.constraint_solver = read_enum(*kind, kConstraintSolverKindNames);
+  }
+  if (auto on = find_child(node, "body_collisions")) solver.body_collisions = read_bool(*on);
+  if (auto on = find_child(node, "self_collision")) solver.self_collision = read_bool(*on);
+  if (auto friction = find_child(node, "body_friction")) {
+    solver.body_friction = require_in_range(*friction, read_real(*friction), 0, 1);
+  }
+  if (auto margin = find_child(node, "collision_margin")) {
+    solver.collision_margin = require_positive(*margin, read_real(*margin));
   }
   return solver;
 }

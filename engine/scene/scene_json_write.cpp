@@ -165,6 +165,10 @@ Json write_solver(const SolverDef& solver) {
   j["constraint_alpha"] = solver.constraint_alpha;
   if (solver.constraint_beta) j["constraint_beta"] = *solver.constraint_beta;
   j["constraint_solver"] = enum_name(solver.constraint_solver, kConstraintSolverKindNames);
+  j["body_collisions"] = solver.body_collisions;
+  j["self_collision"] = solver.self_collision;
+  j["body_friction"] = solver.body_friction;
+  j["collision_margin"] = solver.collision_margin;
   return j;
 }
 

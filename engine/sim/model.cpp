@@ -300,6 +300,10 @@ Model build_model(const Scene& scene) {
     model.tracks.push_back(build_track(scene, t));
   }
   model.constraints = build_constraints(scene, model.bodies);
+  model.body_collisions.enabled = scene.solver.body_collisions;
+  model.body_collisions.self_collision = scene.solver.self_collision;
+  model.body_collisions.friction = scene.solver.body_friction;
+  model.body_collisions.margin = scene.solver.collision_margin;
   return model;
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "collide/body_collision_options.h"
 #include "collide/mesh_obstacle.h"
 #include "constrain/constraint_model.h"
 #include "core/types.h"
@@ -125,7 +126,8 @@ struct Model {
   std::vector<ForceFieldDef> force_fields;
   std::vector<SpringModel> springs;
   std::vector<TrackModel> tracks;
-  ConstraintSystemModel constraints;  // ch. 7
+  ConstraintSystemModel constraints;     // ch. 7
+  BodyCollisionOptions body_collisions;  // 5.2.2, from the solver's keys
   int n_q = 0, n_v = 0;
 };
 

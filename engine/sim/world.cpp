@@ -245,6 +245,11 @@ bool advance_substep(const Model& model, State& state, Real dt, Workspace& ws, i
       v = ws.first_order_velocity.segment(body.v_offset, body.v_size);
     }
   }
+  // Bodies against bodies first (5.2.2), then obstacles (5.2.1), so that obstacles have the last
+  // word and no node is left inside one.
+  ws.body_collision_stats =
+      resolve_body_collisions(model, state, ws, ws.body_collisions, model.body_collisions);
+  ws.contacts += ws.body_collision_stats.contacts;  // the end of 5.2.2's step reduction
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     const BodyModel& body = model.bodies[b];
     resolve_penetrations(model, body, state.q.segment(body.q_offset, body.q_size),

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "collide/body_collisions.h"
 #include "constrain/constraint_forces.h"
 #include "deform/body_dynamics.h"
 #include "integrate/integrators.h"
@@ -64,7 +65,9 @@ struct Workspace {
   DerivativeFn derivative;
   KinematicFn kinematic;
   std::array<double, static_cast<int>(StepStage::count)> stage_seconds{};
-  int contacts = 0;  // touching nodes in the last derivative evaluation
+  int contacts = 0;                         // touching nodes in the last derivative evaluation
+  BodyCollisionWorkspace body_collisions;   // 5.2.2, sized on first use
+  BodyCollisionStats body_collision_stats;  // of the last substep
   // The measurement that ended the last frame, and the state it measured: the next frame starts
   // from it unless the state was changed in between (a seek, an edit).
   struct Measured {

@@ -1,0 +1,22 @@
+// The knobs of collisions between bodies (sec. 5.2.2, collide/body_collisions.h), on their own so
+// that the Model can hold them without the collision code.
+#pragma once
+
+#include "core/types.h"
+
+namespace pbm {
+
+struct BodyCollisionOptions {
+  bool enabled = true;
+  // Proximity band [m]: triangles' boxes are fattened by it, and pairs closer than it are
+  // contacts (speculative while apart). Small against the triangles' size.
+  Real margin = 0.02;
+  // A node found farther than this behind a face is taken for one on the far side of a thin
+  // part, not a contact [m]. Larger than the deepest penetration one step can make.
+  Real max_depth = 0.1;
+  Real friction = 0.3;  // b_f of (5.13), >= 0
+  bool self_collision = true;
+  int iterations = 16;  // Gauss-Seidel sweeps of the impulses, and passes of the projection
+};
+
+}  // namespace pbm
