@@ -108,6 +108,16 @@ struct Bodies {
   Workspace& ws;
   BodyCollisionWorkspace& cws;
   const BodyModel& body(const Side& side) const { return model.bodies[side.body]; }
+  // A rigid or global part held by a constraint (ch. 7) is not translated by the projection:
+  // the constraint force, computed with the dynamics, cannot follow a jump of c, and a see-saw
+  // knocked off its hinge by every landing ball would sink. The other side is moved the whole way.
+  bool pinned(const Side& side) const {
+    if (model.bodies[side.body].has_local) return false;
+    for (const PointConstraintModel& c : model.constraints.points) {
+      if (c.ends[0].body == side.body || c.ends[1].body == side.body) return true;
+    }
+    return false;
+  }
   BodyWorkspace& bw(const Side& side) const { return ws.bodies[side.body]; }
   Scratch& scratch(const Side& side) const { return cws.bodies[side.body]; }
 };
@@ -194,14 +204,14 @@ void apply_displacement(const Bodies& all, const Side& side, Real lambda, const 
       const int i = side.nodes[k];
       s.x[i] += (lambda * side.weights[k] / body.node_mass[i]) * n;
     }
-  } else {
+  } else if (!all.pinned(side)) {
     s.shift += (lambda / body.mass) * n;
   }
 }
 
 Real position_inverse_mass(const Bodies& all, const Side& side) {
   const BodyModel& body = all.body(side);
-  if (!body.has_local) return 1.0 / body.mass;
+  if (!body.has_local) return all.pinned(side) ? 0.0 : 1.0 / body.mass;
   return side_inverse_mass(all, side, Vec3::UnitX());
 }
 
