@@ -172,6 +172,40 @@ TEST(Render, SpringsAndTheWireframeAreDrawn) {
   EXPECT_GT(count_colour(wire, 20, 20, 26) - count_colour(plain, 20, 20, 26), 100);
 }
 
+// Constraint lines: green while held, red when violated by a centimetre or more (the studio's
+// view of ch. 7's assembly).
+TEST(Render, ConstraintsAreColouredByViolation) {
+  OsmesaContext context;
+  Renderer renderer(context.functions());
+  const Model model = build_model(load_scene(scene_path("jello-ball")));
+  Inputs inputs;
+  Workspace ws;
+  init_workspace(model, inputs, ws);
+  Snapshot snap = make_snapshot(model, initial_state(model), inputs, ws);
+  const Camera camera = camera_from_scene(*model.scene.camera);
+  RenderOptions options;
+  options.width = 320;
+  options.height = 240;
+  auto draw = [&](float violation) {
+    snap.constraints = {{Vec3f(-1.0f, 0.0f, 4.0f), Vec3f(1.0f, 0.0f, 5.0f), violation, 0}};
+    renderer.render(snap, camera, options);
+    std::vector<unsigned char> rgb;
+    renderer.read_rgb(rgb);
+    return rgb;
+  };
+  const auto held = draw(0.0f), broken = draw(0.05f);
+  const long green_held = count_colour(held, 64, 230, 89),
+             red_held = count_colour(held, 242, 51, 51);
+  const long green_broken = count_colour(broken, 64, 230, 89);
+  const long red_broken = count_colour(broken, 242, 51, 51);
+  std::printf("held: %ld green, %ld red; broken: %ld green, %ld red\n", green_held, red_held,
+              green_broken, red_broken);
+  EXPECT_GT(green_held, 20);
+  EXPECT_GT(red_broken, 20);
+  EXPECT_LT(red_held, 5);
+  EXPECT_LT(green_broken, 5);
+}
+
 TEST(Render, CameraTracksMoveTheSceneCamera) {
   Scene scene = load_scene(scene_path("jello-ball"));
   TrackDef track;
