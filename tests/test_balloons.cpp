@@ -1,0 +1,198 @@
+// The balloon pendulums of sec. 7.4 (figs. 7.2, 7.3): balloons on strings hung from world anchors
+// by point-to-point constraints, the left one released from the side into its neighbours, body
+// collisions inelastic (5.2.2). Checked here: no two balloon surfaces interpenetrate (beyond 1% of
+// a radius) in any frame, and the four or six constraints hold to 1 mm once the swing is under
+// way (and through the collisions). The book's further claim, that the left balloon swings a
+// shorter distance with a third balloon in the middle, is measured and printed but not asserted,
+// because the engine does not show it: with the book's parameters the left balloon's swing after
+// the collision is the same in both scenes (0.325 m past its rest spot, rebound 0.397 m/s, in
+// either). Between local bodies the inelastic impulses act on the touching nodes alone, so the
+// neighbour's frame is pushed only through its membrane, which dents ~0.3 m before the left
+// balloon turns back; by then nothing has reached a third balloon.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "scene/scene_json.h"
+#include "scene_builders.h"
+#include "sim/snapshot.h"
+
+namespace pbm {
+namespace {
+
+using V3 = Eigen::Vector3d;
+
+V3 to_d(const Vec3f& v) { return v.cast<double>(); }
+
+// Closest distance from p to triangle abc (Ericson, Real-Time Collision Detection 5.1.5).
+double point_triangle_distance(const V3& p, const V3& a, const V3& b, const V3& c) {
+  const V3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return ap.norm();
+  const V3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return bp.norm();
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + d1 / (d1 - d3) * ab)).norm();
+  const V3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return cp.norm();
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + d2 / (d2 - d6) * ac)).norm();
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
+    return (p - (b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b))).norm();
+  }
+  const double denom = 1.0 / (va + vb + vc);
+  return (p - (a + ab * vb * denom + ac * vc * denom)).norm();
+}
+
+// Winding number of the closed surface around p (van Oosterom-Strackee solid angles / 4 pi):
+// 1 inside, 0 outside, whatever the surface's convexity (a dented balloon stays closed).
+double winding_number(const V3& p, const BodySnapshot& body) {
+  double sum = 0;
+  for (const auto& t : body.triangles) {
+    const V3 a = to_d(body.positions[t[0]]) - p, b = to_d(body.positions[t[1]]) - p,
+             c = to_d(body.positions[t[2]]) - p;
+    const double la = a.norm(), lb = b.norm(), lc = c.norm();
+    sum += 2 * std::atan2(a.dot(b.cross(c)),
+                          la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb);
+  }
+  return sum / (4 * std::numbers::pi);
+}
+
+// Deepest node of one balloon inside another: the node's distance to the other's surface [m].
+double max_penetration(const std::vector<const BodySnapshot*>& balloons) {
+  double worst = 0;
+  for (const BodySnapshot* a : balloons) {
+    for (const BodySnapshot* b : balloons) {
+      if (a == b) continue;
+      for (const Vec3f& xf : a->positions) {
+        const V3 x = to_d(xf);
+        if (winding_number(x, *b) < 0.5) continue;
+        double d = 1e300;
+        for (const auto& t : b->triangles) {
+          d = std::min(d, point_triangle_distance(x, to_d(b->positions[t[0]]),
+                                                  to_d(b->positions[t[1]]),
+                                                  to_d(b->positions[t[2]])));
+        }
+        worst = std::max(worst, d);
+      }
+    }
+  }
+  return worst;
+}
+
+std::vector<const BodySnapshot*> balloons_of(const Snapshot& snap) {
+  std::vector<const BodySnapshot*> out;
+  for (const BodySnapshot& b : snap.bodies) {
+    if (b.name.starts_with("balloon")) out.push_back(&b);
+  }
+  return out;
+}
+
+struct BalloonRun {
+  double radius = 0;
+  double max_penetration = 0;       // over every frame [m]
+  double max_violation_late = 0;    // max |C| over the frames after t = 1 s [m]
+  double first_contact = -1;        // first frame with the left balloon's neighbour within reach [s]
+  double left_rest_x = 0;           // where the left balloon hangs at rest [m]
+  double left_max_past_rest = 0;    // its largest x beyond that after first contact [m]
+  double left_return = 0;           // its largest leftward excursion from rest, 0.3 s after contact
+  double left_speed_after = 0;      // its largest |x-dot| after the first collision [m/s]
+};
+
+BalloonRun simulate(const std::string& name, double seconds) {
+  const Scene scene = load_scene(std::string(PBM_SOURCE_DIR) + "/scenes/" + name + ".json");
+  test::Simulation sim(scene);
+  BalloonRun run;
+  int left = -1, neighbour = -1;
+  for (int i = 0; i < static_cast<int>(scene.bodies.size()); ++i) {
+    if (scene.bodies[i].name == "balloon_left") left = i;
+    if (neighbour < 0 && scene.bodies[i].name.starts_with("balloon") &&
+        scene.bodies[i].name != "balloon_left") {
+      neighbour = i;
+    }
+  }
+  EXPECT_GE(left, 0);
+  EXPECT_GE(neighbour, 0);
+  run.radius = scene.bodies[left].q_s[0];
+  // The neighbour hangs at rest at the start; the left one's rest spot is one spacing left of it.
+  const double spacing = 2 * run.radius + 0.02;
+  run.left_rest_x = scene.bodies[neighbour].position.x() - spacing;
+  double prev_x = scene.bodies[left].position.x(), prev_t = 0;
+  bool rebounded = false;
+  while (sim.state.time < seconds - 1e-9) {
+    const FrameResult r = advance_frame(sim.model, sim.state, sim.ws);
+    EXPECT_TRUE(r.ok) << r.message;
+    if (!r.ok) break;
+    const Snapshot snap = make_snapshot(sim.model, sim.state, sim.inputs, sim.ws);
+    run.max_penetration = std::max(run.max_penetration, max_penetration(balloons_of(snap)));
+    if (sim.state.time > 1.0) {
+      run.max_violation_late = std::max(run.max_violation_late, r.stats.constraint_violation);
+    }
+    const double x = r.stats.bodies[left].position.x();
+    const double xn = r.stats.bodies[neighbour].position.x();
+    const double vx = (x - prev_x) / (sim.state.time - prev_t);
+    if (run.first_contact < 0 && xn - x < spacing) run.first_contact = sim.state.time;
+    if (run.first_contact >= 0) {
+      run.left_max_past_rest = std::max(run.left_max_past_rest, x - run.left_rest_x);
+      if (vx <= 0) rebounded = true;
+      if (rebounded) run.left_speed_after = std::max(run.left_speed_after, std::abs(vx));
+      if (sim.state.time > run.first_contact + 0.3) {
+        run.left_return = std::max(run.left_return, run.left_rest_x - x);
+      }
+    }
+    prev_x = x;
+    prev_t = sim.state.time;
+  }
+  std::printf(
+      "%s: first contact %.3f s; left balloon past rest %.4f m, return %.4f m, speed after "
+      "the first collision %.4f m/s; max penetration %.3g m (%.2f%% of r); max |C| after 1 s "
+      "%.3g m\n",
+      name.c_str(), run.first_contact, run.left_max_past_rest, run.left_return,
+      run.left_speed_after, run.max_penetration, 100 * run.max_penetration / run.radius,
+      run.max_violation_late);
+  return run;
+}
+
+// The inside test finds a known overlap: the scene's right balloon moved 0.1 m into the left
+// one's place at rest has its nodes inside by about 0.1 m (so (b) below can fail).
+TEST(Balloons, PenetrationMeasureSeesAKnownOverlap) {
+  const Scene scene = load_scene(std::string(PBM_SOURCE_DIR) + "/scenes/balloons-2.json");
+  test::Simulation sim(scene);
+  Snapshot snap = make_snapshot(sim.model, sim.state, sim.inputs, sim.ws);
+  std::vector<const BodySnapshot*> balloons = balloons_of(snap);
+  ASSERT_EQ(balloons.size(), 2u);
+  EXPECT_EQ(max_penetration(balloons), 0.0);  // released from the side: apart
+  BodySnapshot copy = *balloons[1];
+  for (Vec3f& x : copy.positions) x.x() -= 0.1f;  // overlaps the original by 0.1 m
+  const double depth = max_penetration({balloons[1], &copy});
+  std::printf("known 0.1 m overlap measured as %.4f m\n", depth);
+  EXPECT_NEAR(depth, 0.1, 0.02);
+}
+
+// Fig. 7.2 and 7.3 run for 6 s: the balloons collide (first contact near a quarter period of the
+// 2.4 m pendulum, ~1.1 s) and dent each other, but no node of one balloon is ever inside another
+// by more than 1% of the 0.4 m radius (the inelastic mid-plane projection keeps the surfaces
+// apart); the constraints, started satisfied, hold to 1 mm through the collisions (Baumgarte
+// alpha = 60 / s).
+TEST(Balloons, NoInterpenetrationAndConstraintsHold) {
+  for (const char* name : {"balloons-2", "balloons-3"}) {
+    const BalloonRun run = simulate(name, 6.0);
+    EXPECT_GT(run.first_contact, 0.8) << name;  // they do collide, once the swing is under way
+    EXPECT_LT(run.first_contact, 1.6) << name;
+    EXPECT_GT(run.left_max_past_rest, 0.02) << name;  // the collision happened, not a near miss
+    EXPECT_LT(run.max_penetration, 0.01 * run.radius) << name;
+    EXPECT_LT(run.max_violation_late, 1e-3) << name;
+  }
+}
+
+}  // namespace
+}  // namespace pbm
