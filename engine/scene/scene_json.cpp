@@ -308,6 +308,24 @@ ForceFieldDef parse_force_field(const JsonNode& node, const std::vector<BodyDef>
   return field;
 }
 
+// A node of `body` (springs, constraint ends).
+int read_node_index(const JsonNode& node, const BodyDef& body) {
+  const int index = read_int(node);
+  if (index < 0 || index >= node_count(body)) {
+    fail(node, "node " + std::to_string(index) + " is out of range: body '" + body.name + "' has " +
+                   std::to_string(node_count(body)) + " nodes (2 + rings * segments)");
+  }
+  return index;
+}
+
+// Material coordinates (u, v) within the ranges of (2.7): -pi/2 <= u <= pi/2, -pi <= v <= pi.
+Vec2 read_material_point(const JsonNode& node) {
+  const Vec2 uv = read_vec2(node);
+  require_in_range(element(node, 0), uv[0], -std::numbers::pi / 2, std::numbers::pi / 2);
+  require_in_range(element(node, 1), uv[1], -std::numbers::pi, std::numbers::pi);
+  return uv;
+}
+
 SpringDef parse_spring(const JsonNode& node, std::size_t index,
                        const std::vector<BodyDef>& bodies) {
   require_object(node, {"name", "body", "node", "material_point", "target", "stiffness", "damping",
@@ -322,22 +340,8 @@ SpringDef parse_spring(const JsonNode& node, std::size_t index,
   if (node_index.has_value() == material_point.has_value()) {
     fail(node, "give exactly one of 'node' and 'material_point'");
   }
-  if (node_index) {
-    spring.node = read_int(*node_index);
-    if (spring.node < 0 || spring.node >= node_count(body)) {
-      fail(*node_index, "node " + std::to_string(spring.node) + " is out of range: body '" +
-                            body.name + "' has " + std::to_string(node_count(body)) +
-                            " nodes (2 + rings * segments)");
-    }
-  }
-  if (material_point) {
-    // (u, v) ranges of (2.7): -pi/2 <= u <= pi/2, -pi <= v <= pi.
-    const Vec2 uv = read_vec2(*material_point);
-    require_in_range(element(*material_point, 0), uv[0], -std::numbers::pi / 2,
-                     std::numbers::pi / 2);
-    require_in_range(element(*material_point, 1), uv[1], -std::numbers::pi, std::numbers::pi);
-    spring.material_point = uv;
-  }
+  if (node_index) spring.node = read_node_index(*node_index, body);
+  if (material_point) spring.material_point = read_material_point(*material_point);
   if (auto target = find_child(node, "target")) spring.target = read_vec3(*target);
   if (auto stiffness = find_child(node, "stiffness")) {
     spring.stiffness = require_non_negative(*stiffness, read_real(*stiffness));
@@ -385,21 +389,8 @@ ConstraintEndDef parse_constraint_end(const JsonNode& node, const std::vector<Bo
       int(node_index.has_value()) + int(material_point.has_value()) + int(point.has_value());
   if (given != 1) fail(node, "give exactly one of 'node', 'material_point' and 'point'");
   if (hinge && !point) fail(node, "a hinge's body ends need 'point' (body frame, on its axis)");
-  if (node_index) {
-    end.node = read_int(*node_index);
-    if (end.node < 0 || end.node >= node_count(body)) {
-      fail(*node_index, "node " + std::to_string(end.node) + " is out of range: body '" +
-                            body.name + "' has " + std::to_string(node_count(body)) +
-                            " nodes (2 + rings * segments)");
-    }
-  }
-  if (material_point) {
-    const Vec2 uv = read_vec2(*material_point);
-    require_in_range(element(*material_point, 0), uv[0], -std::numbers::pi / 2,
-                     std::numbers::pi / 2);
-    require_in_range(element(*material_point, 1), uv[1], -std::numbers::pi, std::numbers::pi);
-    end.material_point = uv;
-  }
+  if (node_index) end.node = read_node_index(*node_index, body);
+  if (material_point) end.material_point = read_material_point(*material_point);
   if (point) end.point = read_vec3(*point);
   return end;
 }
