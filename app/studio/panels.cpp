@@ -333,8 +333,11 @@ void stats(Studio& studio) {
   ImGui::Text("%-15s %8.3f ms", "step total", 1e3 * total);
   ImGui::Text("kinetic %.4g J  elastic %.4g J  potential %.4g J", f.kinetic, f.elastic,
               f.potential);
-  ImGui::Text("min obstacle distance %.4g m, %d contacts",
-              f.min_distance > 1e299 ? 0.0 : f.min_distance, f.contacts);
+  if (f.min_distance > 1e299) {
+    ImGui::Text("no obstacles, %d contacts", f.contacts);
+  } else {
+    ImGui::Text("min obstacle distance %.4g m, %d contacts", f.min_distance, f.contacts);
+  }
   std::vector<float> kinetic, elastic, distance, cost;
   for (const StatsSample& p : studio.plot) {
     kinetic.push_back(p.kinetic);
