@@ -143,31 +143,41 @@ long count_colour(const std::vector<unsigned char>& rgb, int r, int g, int b) {
   return n;
 }
 
-TEST(Render, SpringsAndTheWireframeAreDrawn) {
+// The jello-ball at frame 0 from its scene camera, at 320x240: what the overlay tests draw on.
+struct JelloView {
   OsmesaContext context;
-  Renderer renderer(context.functions());
+  Renderer renderer{context.functions()};
   const Model model = build_model(load_scene(scene_path("jello-ball")));
   Inputs inputs;
   Workspace ws;
-  init_workspace(model, inputs, ws);
-  const State state = initial_state(model);
   const Camera camera = camera_from_scene(*model.scene.camera);
   RenderOptions options;
-  options.width = 320;
-  options.height = 240;
-  std::vector<unsigned char> plain, with_spring, wire;
-  renderer.render(make_snapshot(model, state, inputs, ws), camera, options);
-  renderer.read_rgb(plain);
+  JelloView() {
+    init_workspace(model, inputs, ws);
+    options.width = 320;
+    options.height = 240;
+  }
+  Snapshot snapshot() { return make_snapshot(model, initial_state(model), inputs, ws); }
+  std::vector<unsigned char> draw(const Snapshot& snap) {
+    renderer.render(snap, camera, options);
+    std::vector<unsigned char> rgb;
+    renderer.read_rgb(rgb);
+    return rgb;
+  }
+};
+
+TEST(Render, SpringsAndTheWireframeAreDrawn) {
+  JelloView view;
+  const auto plain = view.draw(view.snapshot());
   // A mouse spring from the top node to a point beside the ball: a yellow line with end points.
-  inputs.springs.push_back({0, model.bodies[0].tessellation.north_pole, Vec3(0.5, 0, 4.5), 10, 1});
-  renderer.render(make_snapshot(model, state, inputs, ws), camera, options);
-  renderer.read_rgb(with_spring);
+  view.inputs.springs.push_back(
+      {0, view.model.bodies[0].tessellation.north_pole, Vec3(0.5, 0, 4.5), 10, 1});
+  const auto with_spring = view.draw(view.snapshot());
   EXPECT_EQ(count_colour(plain, 242, 217, 51), 0);
   EXPECT_GT(count_colour(with_spring, 242, 217, 51), 20);
-  inputs.springs.clear();
-  options.wireframe = true;
-  renderer.render(make_snapshot(model, state, inputs, ws), camera, options);
-  renderer.read_rgb(wire);
+  view.inputs.springs.clear();
+  view.options.wireframe = true;
+  const auto wire = view.draw(view.snapshot());
   // The element edges darken part of the ball.
   EXPECT_GT(count_colour(wire, 20, 20, 26) - count_colour(plain, 20, 20, 26), 100);
 }
@@ -175,23 +185,11 @@ TEST(Render, SpringsAndTheWireframeAreDrawn) {
 // Constraint lines: green while held, red when violated by a centimetre or more (the studio's
 // view of ch. 7's assembly).
 TEST(Render, ConstraintsAreColouredByViolation) {
-  OsmesaContext context;
-  Renderer renderer(context.functions());
-  const Model model = build_model(load_scene(scene_path("jello-ball")));
-  Inputs inputs;
-  Workspace ws;
-  init_workspace(model, inputs, ws);
-  Snapshot snap = make_snapshot(model, initial_state(model), inputs, ws);
-  const Camera camera = camera_from_scene(*model.scene.camera);
-  RenderOptions options;
-  options.width = 320;
-  options.height = 240;
+  JelloView view;
+  Snapshot snap = view.snapshot();
   auto draw = [&](float violation) {
     snap.constraints = {{Vec3f(-1.0f, 0.0f, 4.0f), Vec3f(1.0f, 0.0f, 5.0f), violation, 0}};
-    renderer.render(snap, camera, options);
-    std::vector<unsigned char> rgb;
-    renderer.read_rgb(rgb);
-    return rgb;
+    return view.draw(snap);
   };
   const auto held = draw(0.0f), broken = draw(0.05f);
   const long green_held = count_colour(held, 64, 230, 89),
