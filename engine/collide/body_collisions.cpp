@@ -111,13 +111,9 @@ struct Bodies {
   // A rigid or global part held by a constraint (ch. 7) is not translated by the projection:
   // the constraint force, computed with the dynamics, cannot follow a jump of c, and a see-saw
   // knocked off its hinge by every landing ball would sink. The other side is moved the whole way.
-  bool pinned(const Side& side) const {
-    if (model.bodies[side.body].has_local) return false;
-    for (const PointConstraintModel& c : model.constraints.points) {
-      if (c.ends[0].body == side.body || c.ends[1].body == side.body) return true;
-    }
-    return false;
-  }
+  // Per body, found once per call: the test sits inside the projection's passes.
+  std::vector<char> held;
+  bool pinned(const Side& side) const { return held[side.body] != 0; }
   BodyWorkspace& bw(const Side& side) const { return ws.bodies[side.body]; }
   Scratch& scratch(const Side& side) const { return cws.bodies[side.body]; }
 };
@@ -524,7 +520,12 @@ BodyCollisionStats resolve_body_collisions(const Model& model, State& state, Wor
   }
 
   t0 = Clock::now();
-  const Bodies all{model, ws, cws};
+  Bodies all{model, ws, cws, std::vector<char>(model.bodies.size(), 0)};
+  for (const PointConstraintModel& c : model.constraints.points) {
+    for (const ConstraintPoint& end : c.ends) {
+      if (end.body >= 0 && !model.bodies[end.body].has_local) all.held[end.body] = 1;
+    }
+  }
   for (BodyContact& c : cws.contacts) {
     for (const int b : {c.body_a, c.body_b}) {
       Scratch& s = cws.bodies[b];
