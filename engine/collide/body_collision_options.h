@@ -15,6 +15,8 @@ struct BodyCollisionOptions {
   // part, not a contact [m]. Larger than the deepest penetration one step can make.
   Real max_depth = 0.1;
   Real friction = 0.3;  // b_f of (5.13), >= 0
+  // a of (5.11) between bodies, >= 0 (collide/body_push.h); 0 keeps the contacts inelastic only.
+  Real elasticity = 0;
   bool self_collision = true;
   int iterations = 16;  // Gauss-Seidel sweeps of the impulses, and passes of the projection
 };

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "collide/body_push.h"
 #include "collide/rigid_contact.h"
 #include "collide/triangle_geometry.h"
 #include "deform/body_dynamics.h"
@@ -60,6 +61,7 @@ void size_workspace(const Model& model, BodyCollisionWorkspace& cws) {
     const BodyModel& body = model.bodies[b];
     Scratch& s = cws.bodies[b];
     build_rings(body, s);
+    s.stiffness = node_contact_stiffness(body);
     const auto n = static_cast<std::size_t>(body.n_nodes());
     s.x0.assign(n, Vec3::Zero());
     s.x.assign(n, Vec3::Zero());
@@ -545,6 +547,9 @@ BodyCollisionStats resolve_body_collisions(const Model& model, State& state, Wor
   solve_impulses(all, options, dt, stats);
   project_to_mid_plane(all, options, stats);
   write_back(model, state, ws, cws);
+  const BodyPushStats push = apply_body_push(model, state, ws, cws, options.elasticity, dt);
+  stats.pressing = push.pressing;
+  stats.push_impulse = push.impulse;
   stats.seconds_response = seconds_since(t0);
   stats.seconds = seconds_since(start);
   return stats;

@@ -34,7 +34,8 @@
 // y maps by sum w_k P_k^T R^T J through the k x k mass block (A^+), as for obstacles (5.2.1); their
 // position correction translates c alone (inverse mass 1 / M), without turning or reshaping
 // them. Self-collision needs q_d, so only local bodies collide with themselves.
-// The obstacles' elastic push (5.11) has no counterpart here: body pairs are inelastic.
+// Then the elastic push of step 4, (5.11) between the bodies' global surfaces, with
+// solver.body_elasticity as a (collide/body_push.h; 0: the pairs are inelastic only).
 #pragma once
 
 #include <array>
@@ -61,6 +62,8 @@ struct BodyCollisionStats {
   Real max_penetration = 0;        // deepest interpenetration before the projection [m]
   Real max_penetration_after = 0;  // deepest left after it, over the contacts [m]
   Real normal_impulse = 0;         // sum of j_n [N s]
+  int pressing = 0;                // pairs pushed apart by (5.11) (collide/body_push.h)
+  Real push_impulse = 0;           // sum of their impulses [N s]
   int reinserted_leaves = 0;       // btDbvt leaves that moved
   double seconds_broadphase = 0, seconds_narrowphase = 0, seconds_response = 0;
   double seconds = 0;  // whole call
@@ -87,6 +90,7 @@ struct BodyCollisionWorkspace {
     std::vector<Vec3> x_dot0, x_dot;     // node velocities (local bodies), world [m/s]
     std::vector<Vec3> normal;            // unit area-weighted vertex normals, world
     std::vector<std::vector<int>> ring;  // per node: itself and its neighbours, sorted
+    std::vector<Real> stiffness;         // local bodies: per node, for the push (body_push.h)
     VecX nu, g, delta;          // rigid/global: (R^T c-dot, omega, q_s-dot) and scratch (k)
     Vec3 shift = Vec3::Zero();  // rigid/global: translation of c by the projection [m]
     bool touched = false;

@@ -556,7 +556,7 @@ SolverDef parse_solver(const JsonNode& node) {
                  {"dt", "integrator", "tolerance", "fps", "duration", "contact_step_reduction",
                   "contact_dt_factor", "max_retries", "energy_growth_bound", "constraint_alpha",
                   "constraint_beta", "constraint_solver", "body_collisions", "self_collision",
-                  "body_friction", "collision_margin"});
+                  "body_friction", "body_elasticity", "collision_margin"});
   SolverDef solver;
   if (auto dt = find_child(node, "dt")) solver.dt = require_positive(*dt, read_real(*dt));
   if (auto integrator = find_child(node, "integrator")) {
@@ -602,6 +602,9 @@ SolverDef parse_solver(const JsonNode& node) {
   if (auto on = find_child(node, "self_collision")) solver.self_collision = read_bool(*on);
   if (auto friction = find_child(node, "body_friction")) {
     solver.body_friction = require_in_range(*friction, read_real(*friction), 0, 1);
+  }
+  if (auto elasticity = find_child(node, "body_elasticity")) {
+    solver.body_elasticity = require_non_negative(*elasticity, read_real(*elasticity));
   }
   if (auto margin = find_child(node, "collision_margin")) {
     solver.collision_margin = require_positive(*margin, read_real(*margin));

@@ -168,6 +168,7 @@ Json write_solver(const SolverDef& solver) {
   j["body_collisions"] = solver.body_collisions;
   j["self_collision"] = solver.self_collision;
   j["body_friction"] = solver.body_friction;
+  j["body_elasticity"] = solver.body_elasticity;
   j["collision_margin"] = solver.collision_margin;
   return j;
 }

@@ -303,6 +303,7 @@ Model build_model(const Scene& scene) {
   model.body_collisions.enabled = scene.solver.body_collisions;
   model.body_collisions.self_collision = scene.solver.self_collision;
   model.body_collisions.friction = scene.solver.body_friction;
+  model.body_collisions.elasticity = scene.solver.body_elasticity;
   model.body_collisions.margin = scene.solver.collision_margin;
   return model;
 }
