@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "scene/scene_json.h"
 #include "scene_builders.h"
+#include "sim/snapshot.h"
 #include "sim/tracks.h"
 #include "sim/world.h"
 
@@ -204,6 +205,17 @@ TEST(MovingObstacles, PlacementVelocitiesAreTheTracksDerivatives) {
     EXPECT_LT((omega - at[0].angular_velocity).norm(), 1e-5) << t;
     EXPECT_GT(at[0].angular_velocity.norm(), 0.1) << t;
   }
+}
+
+// The snapshot (renderer and studio) draws an obstacle where it is at the state's time.
+TEST(MovingObstacles, SnapshotShowsTheObstacleWhereItIs) {
+  test::Simulation sim(box_hits_ball(DeformLevel::rigid));
+  const Snapshot at_start = make_snapshot(sim.model, sim.state, sim.inputs, sim.ws);
+  for (int f = 0; f < 50; ++f) ASSERT_TRUE(advance_frame(sim.model, sim.state, sim.ws).ok);
+  const Snapshot later = make_snapshot(sim.model, sim.state, sim.inputs, sim.ws);
+  ASSERT_EQ(later.obstacles.size(), 1u);
+  EXPECT_FLOAT_EQ(at_start.obstacles[0].point.x(), -2.0f);
+  EXPECT_NEAR(later.obstacles[0].point.x(), -1.5f, 1e-5f);  // 1 m/s for 0.5 s
 }
 
 // (e) Obstacle tracks in the file: round trip, the kind's own key stored as point, errors at
