@@ -27,7 +27,8 @@ struct Stepper {
         resolve_body_collisions(sim.model, sim.state, sim.ws, cws, options);
     for (std::size_t b = 0; b < sim.model.bodies.size(); ++b) {
       const BodyModel& body = sim.model.bodies[b];
-      resolve_penetrations(sim.model, body, sim.state.q.segment(body.q_offset, body.q_size),
+      resolve_penetrations(sim.model.obstacles, body,
+                           sim.state.q.segment(body.q_offset, body.q_size),
                            sim.state.v.segment(body.v_offset, body.v_size), sim.ws.bodies[b]);
     }
     return stats;

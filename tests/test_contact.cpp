@@ -106,12 +106,12 @@ TEST(Contact, ObstaclePushIsTheGradientOfItsEnergy) {
   bw.dt = 0;  // no stability clamp: the bare (5.11)
   auto energy = [&](const VecX& q) {
     compute_body_kinematics(model_body, q, sim.state.v, bw, false);
-    return contact_potential_energy(sim.model, model_body, bw);
+    return contact_potential_energy(sim.model.obstacles, model_body, bw);
   };
   const VecX q0 = sim.state.q;
   compute_body_kinematics(model_body, q0, sim.state.v, bw);
   factor_generalized_mass(model_body, q0, bw);
-  add_contact_forces(sim.model, model_body, bw);
+  add_contact_forces(sim.model.obstacles, model_body, bw);
   const Vec3 force = bw.R * bw.contact_generalized.segment<3>(0);   // world frame
   const Vec3 torque = bw.R * bw.contact_generalized.segment<3>(3);  // about c, world frame
   ASSERT_GT(force.norm(), 1.0);

@@ -81,6 +81,8 @@ TEST(StudioDocument, KeyframesOnTheFieldUnderEdit) {
   EXPECT_EQ(track_target_for(scene, "/bodies/0/shape/rest/a3"), "bodies[0].q_s0[3]");
   EXPECT_EQ(track_target_for(scene, "/camera/fov"), "camera.fov");
   EXPECT_EQ(track_target_for(scene, "/bodies/0/material/w1"), "");
+  EXPECT_EQ(track_target_for(scene, "/obstacles/1/center/2"), "obstacles[1].point[2]");
+  EXPECT_EQ(track_target_for(scene, "/obstacles/0/point/0"), "obstacles[0].point[0]");
   json tracks = tracks_with_key(json::array(), "gravity[2]", 1.0, -5.0);
   tracks = tracks_with_key(tracks, "gravity[2]", 0.5, -9.81);
   tracks = tracks_with_key(tracks, "gravity[2]", 1.0, -4.0);  // replaces the key at 1 s

@@ -292,10 +292,13 @@ struct Renderer::Impl {
       }
       first.push_back(static_cast<GLint>(vertices.size() / 6));
       if (o.kind == ObstacleKind::mesh) {
+        auto placed = [&o](int k) -> Vec3f {
+          return o.mesh_rotation * o.mesh->vertices[k].cast<float>() + o.mesh_offset;
+        };
         for (const std::array<int, 3>& t : o.mesh->triangles) {
-          const Vec3f a = o.mesh->vertices[t[0]].cast<float>();
-          const Vec3f b = o.mesh->vertices[t[1]].cast<float>();
-          const Vec3f c = o.mesh->vertices[t[2]].cast<float>();
+          const Vec3f a = placed(t[0]);
+          const Vec3f b = placed(t[1]);
+          const Vec3f c = placed(t[2]);
           const Vec3f n = (b - a).cross(c - a).normalized();
           vertex(a, n);
           vertex(b, n);

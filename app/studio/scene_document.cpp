@@ -209,6 +209,12 @@ std::string track_target_for(const Scene& scene, const std::string& pointer) {
   if (std::sscanf(p, "/camera/target/%d%c", &k, &tail) == 1)
     return "camera.target[" + std::to_string(k) + "]";
   if (pointer == "/camera/fov") return "camera.fov";
+  // A plane's point, a box's centre, a mesh's position: all "point" tracks.
+  if (std::sscanf(p, "/obstacles/%d/point/%d%c", &i, &k, &tail) == 2 ||
+      std::sscanf(p, "/obstacles/%d/center/%d%c", &i, &k, &tail) == 2 ||
+      std::sscanf(p, "/obstacles/%d/position/%d%c", &i, &k, &tail) == 2) {
+    return "obstacles[" + std::to_string(i) + "].point[" + std::to_string(k) + "]";
+  }
   if (std::sscanf(p, "/bodies/%d/shape/rest/%63s", &i, name) == 2 && i >= 0 &&
       i < static_cast<int>(scene.bodies.size())) {
     const ShapeKind shape = scene.bodies[i].shape;

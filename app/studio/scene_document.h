@@ -65,7 +65,8 @@ const std::vector<std::string>& body_preset_names();
 // The scene path of a track target for an inspector field, if the field can be keyframed:
 // "/gravity/2" -> "gravity[2]", "/bodies/0/shape/rest/a1" -> "bodies[0].q_s0[1]",
 // "/springs/1/target/0" -> "springs[1].target[0]", "/springs/1/stiffness",
-// "/camera/position/2", "/camera/target/0", "/camera/fov". Empty otherwise.
+// "/camera/position/2", "/camera/target/0", "/camera/fov", "/obstacles/0/center/2" ->
+// "obstacles[0].point[2]" (also point/ and position/). Empty otherwise.
 std::string track_target_for(const Scene& scene, const std::string& pointer);
 
 // The scene's tracks (JSON array) with a key of `value` at `time` on `target` (a new track when

@@ -106,6 +106,8 @@ std::shared_ptr<const MeshObstacle> load_mesh_obstacle(const std::string& path,
                                   aiProcess_PreTransformVertices);
   if (scene == nullptr) throw std::runtime_error(importer.GetErrorString());
   auto mesh = std::make_shared<MeshObstacle>();
+  mesh->rotation = rotation;
+  mesh->position = position;
   for (unsigned int mi = 0; mi < scene->mNumMeshes; ++mi) {
     const aiMesh* part = scene->mMeshes[mi];
     const int offset = static_cast<int>(mesh->vertices.size());

@@ -23,6 +23,10 @@ struct MeshObstacle {
   std::array<int, 3> samples{0, 0, 0};
   std::vector<Real> distance;                       // x fastest; > 0 outside
   Vec3 lower = Vec3::Zero(), upper = Vec3::Zero();  // bounds of the vertices
+  // The placement the world vertices and the grid were made at: a moved mesh obstacle reads its
+  // field at x mapped back by the rigid motion between this placement and its current one.
+  Mat3 rotation = Mat3::Identity();
+  Vec3 position = Vec3::Zero();
 };
 
 // Loads and places the mesh; throws std::runtime_error saying why (unreadable, no triangles,

@@ -11,8 +11,20 @@ Real solid_signed_distance(const ObstacleModel& o, const Vec3& x, Vec3& normal) 
   switch (o.kind) {
     case ObstacleKind::plane:
       return signed_distance(o, x, normal);
-    case ObstacleKind::mesh:
-      return mesh_signed_distance(*o.mesh, x, normal);
+    case ObstacleKind::mesh: {
+      const MeshObstacle& mesh = *o.mesh;
+      // Where the scene put it (bit for bit: static meshes read x directly), or moved by tracks.
+      if (o.point == mesh.position && o.rotation == mesh.rotation) {
+        return mesh_signed_distance(mesh, x, normal);
+      }
+      // x taken back by the rigid motion from the load placement (R0, p0) to (R, p):
+      // x0 = p0 + R0 R^T (x - p); the normal comes forward by R R0^T.
+      const Mat3 back = mesh.rotation * o.rotation.transpose();
+      Vec3 n0;
+      const Real d = mesh_signed_distance(mesh, mesh.position + back * (x - o.point), n0);
+      normal = back.transpose() * n0;
+      return d;
+    }
     case ObstacleKind::box: {
       const Vec3 local = o.rotation.transpose() * (x - o.point);
       const Vec3 excess = local.cwiseAbs() - o.half_extents;

@@ -31,12 +31,12 @@ void compute_node_positions(const BodyModel& body, const Eigen::Ref<const VecX>&
 }
 
 // Deepest obstacle for x: returns the signed distance and sets the obstacle index and normal.
-Real deepest(const Model& model, const Vec3& x, int& which, Vec3& normal) {
+Real deepest(Obstacles obstacles, const Vec3& x, int& which, Vec3& normal) {
   Real best = 1e300;
   which = -1;
-  for (int o = 0; o < static_cast<int>(model.obstacles.size()); ++o) {
+  for (int o = 0; o < static_cast<int>(obstacles.size()); ++o) {
     Vec3 n;
-    const Real d = signed_distance(model.obstacles[o], x, n);
+    const Real d = signed_distance(obstacles[o], x, n);
     if (d < best) {
       best = d;
       which = o;
@@ -48,11 +48,13 @@ Real deepest(const Model& model, const Vec3& x, int& which, Vec3& normal) {
 
 // Inelastic contact impulses on nu_g at the given nodes, mapped by L^T (P_i^T R^T in the body
 // frame) through the k x k mass block, with Coulomb's cone |j_t| <= beta_f j_n (5.12) on the
-// accumulated impulses. Jacobi, not Gauss-Seidel: every contact sees the same velocities in an
-// iteration and takes 1 / n_contacts of what would stop it, so the distribution over a
-// statically indeterminate patch does not depend on the order of the nodes (a sequential sweep
-// puts the impulse on the first nodes and gives a symmetric ball a spurious spin).
-void resolve_generalized_impulses(const Model& model, const BodyModel& body,
+// accumulated impulses. Both act on the node's velocity relative to the obstacle's material
+// there, so a moving obstacle leaves the node with at least its normal velocity (momentum goes
+// into the body) and drags it by friction. Jacobi, not Gauss-Seidel: every contact sees the same
+// velocities in an iteration and takes 1 / n_contacts of what would stop it, so the distribution
+// over a statically indeterminate patch does not depend on the order of the nodes (a sequential
+// sweep puts the impulse on the first nodes and gives a symmetric ball a spurious spin).
+void resolve_generalized_impulses(Obstacles obstacles, const BodyModel& body,
                                   const std::vector<int>& nodes, Eigen::Ref<VecX> v,
                                   BodyWorkspace& ws) {
   const int k = body.n_generalized();
@@ -69,20 +71,22 @@ void resolve_generalized_impulses(const Model& model, const BodyModel& body,
     MatX minv_pb;  // k x 3
     Mat3 W;
     Real friction = 0;
-    Vec3 j = Vec3::Zero();  // accumulated (normal, t1, t2) impulse
+    Vec3 v_obstacle = Vec3::Zero();  // the obstacle's velocity at the node, in (n, t1, t2)
+    Vec3 j = Vec3::Zero();           // accumulated (normal, t1, t2) impulse
   };
   std::vector<ContactPoint> contacts(nodes.size());
   for (int c = 0; c < n_c; ++c) {
     int o = -1;
     Vec3 n;
-    deepest(model, ws.x[nodes[c]], o, n);
+    deepest(obstacles, ws.x[nodes[c]], o, n);
     ContactPoint& cp = contacts[c];
     const Vec3 n_b = Rt * n;
     const Vec3 t1 = n_b.unitOrthogonal();
     cp.basis.col(0) = n_b;
     cp.basis.col(1) = t1;
     cp.basis.col(2) = n_b.cross(t1);
-    cp.friction = model.obstacles[o].friction;
+    cp.friction = obstacles[o].friction;
+    cp.v_obstacle = cp.basis.transpose() * (Rt * obstacles[o].velocity_at(ws.x[nodes[c]]));
     cp.minv_pb.resize(k, 3);
     for (int d = 0; d < 3; ++d) {
       VecX col(k);
@@ -102,7 +106,8 @@ void resolve_generalized_impulses(const Model& model, const BodyModel& body,
       ContactPoint& cp = contacts[c];
       const Real w_n = cp.W(0, 0);
       if (!(w_n > 0)) continue;
-      const Vec3 vel = cp.basis.transpose() * node_from_generalized(body, ws, nodes[c], nu);
+      const Vec3 vel =
+          cp.basis.transpose() * node_from_generalized(body, ws, nodes[c], nu) - cp.v_obstacle;
       Vec3 j = cp.j;
       j[0] = std::max(0.0, j[0] - vel[0] / (w_n * n_c));
       if (cp.friction > 0) {
@@ -144,10 +149,10 @@ Vec3 blended_point(const ContactSample& sample, const BodyWorkspace& ws) {
 
 // Signed distance of the sample's point on the global surface c + R s(u, v) (no dent) to the
 // deepest obstacle; s is evaluated exactly only near an obstacle. Sets s (body frame), o and n.
-Real sample_distance(const Model& model, const BodyModel& body, const ContactSample& sample,
+Real sample_distance(Obstacles obstacles, const BodyModel& body, const ContactSample& sample,
                      BodyWorkspace& ws, const Vec3& c, Vec3& s, int& o, Vec3& n) {
   s = blended_point(sample, ws);
-  const Real screen = deepest(model, c + ws.R * s, o, n);
+  const Real screen = deepest(obstacles, c + ws.R * s, o, n);
   if (screen > 4.0 * body.contact_sample_gap * ws.q_s[0] / body.q_s_fixed[0]) return screen;
   if (body.shape == ShapeKind::superquadric) {
     // The superquadric from its latitude's and longitude's powers, shared by many samples.
@@ -165,7 +170,7 @@ Real sample_distance(const Model& model, const BodyModel& body, const ContactSam
   } else {
     evaluate_reference_shape(body.shape, ws.q_s, sample.angles, 1.0, s, nullptr);
   }
-  return deepest(model, c + ws.R * s, o, n);
+  return deepest(obstacles, c + ws.R * s, o, n);
 }
 
 // c, from any node's x = c + R p.
@@ -176,21 +181,21 @@ Vec3 frame_origin(const BodyWorkspace& ws) {
 // Fills ws.pressing with the samples whose point on the global surface is inside an obstacle.
 // A signed distance is 1-Lipschitz, so a sample is at least its nearest node's distance minus its
 // triangle's reach: triangles whose nodes all stand farther are skipped unevaluated.
-void gather_pressing_samples(const Model& model, const BodyModel& body, BodyWorkspace& ws,
+void gather_pressing_samples(Obstacles obstacles, const BodyModel& body, BodyWorkspace& ws,
                              const Vec3& c) {
   ws.pressing.clear();
-  if (!body.has_local || model.obstacles.empty()) return;
+  if (!body.has_local || obstacles.empty()) return;
   if (++ws.sample_stamp == 0) {  // wrapped: no entry may look current
     std::fill(ws.sample_u_stamp.begin(), ws.sample_u_stamp.end(), 0u);
     std::fill(ws.sample_v_stamp.begin(), ws.sample_v_stamp.end(), 0u);
     ws.sample_stamp = 1;
   }
   bool all_planes = true;
-  for (const ObstacleModel& o : model.obstacles) all_planes &= o.kind == ObstacleKind::plane;
+  for (const ObstacleModel& o : obstacles) all_planes &= o.kind == ObstacleKind::plane;
   for (int i = 0; i < body.n_nodes(); ++i) {
     int o;
     Vec3 n;
-    ws.surface_distance[i] = deepest(model, c + ws.R * ws.s[i], o, n);
+    ws.surface_distance[i] = deepest(obstacles, c + ws.R * ws.s[i], o, n);
   }
   // The reach and the gap were measured on the initial shape; a0 scales them, and the factor 2
   // covers the rest of a shape's change.
@@ -213,7 +218,7 @@ void gather_pressing_samples(const Model& model, const BodyModel& body, BodyWork
       }
       BodyWorkspace::PressingPoint point;
       point.sample = index;
-      point.phi = sample_distance(model, body, body.contact_samples[index], ws, c, point.s,
+      point.phi = sample_distance(obstacles, body, body.contact_samples[index], ws, c, point.s,
                                   point.obstacle, point.n);
       if (point.phi < 0) ws.pressing.push_back(point);
     }
@@ -241,21 +246,21 @@ void reserve_columns(MatX& matrix, VecX& vector, VecX& other, int k, int m) {
 
 }  // namespace
 
-int add_contact_forces(const Model& model, const BodyModel& body, BodyWorkspace& ws) {
+int add_contact_forces(Obstacles obstacles, const BodyModel& body, BodyWorkspace& ws) {
   ws.contact_generalized.setZero();
   for (int i = 0; i < body.n_nodes(); ++i) ws.contact[i] = -1;
-  if (!body.has_local || model.obstacles.empty()) return 0;
+  if (!body.has_local || obstacles.empty()) return 0;
   int touching = 0;
   for (int i = 0; i < body.n_nodes(); ++i) {
     int o = -1;
     Vec3 n;
-    if (deepest(model, ws.x[i], o, n) > kContactBand) continue;
+    if (deepest(obstacles, ws.x[i], o, n) > kContactBand) continue;
     ws.contact[i] = o;
     ++touching;
   }
   const Vec3 c = frame_origin(ws);
   const Mat3 Rt = ws.R.transpose();
-  gather_pressing_samples(model, body, ws, c);
+  gather_pressing_samples(obstacles, body, ws, c);
   Real pressing_stiffness = 0;
   for (const auto& point : ws.pressing) {
     pressing_stiffness += body.contact_samples[point.sample].stiffness;
@@ -284,7 +289,7 @@ int add_contact_forces(const Model& model, const BodyModel& body, BodyWorkspace&
   for (int p = 0; p < m; ++p) {
     const auto& point = ws.pressing[p];
     const ContactSample& sample = body.contact_samples[point.sample];
-    const ObstacleModel& obs = model.obstacles[point.obstacle];
+    const ObstacleModel& obs = obstacles[point.obstacle];
     const Real share = sample.stiffness / pressing_stiffness;
     const Real mass_n = share / mobility[p];
     // (5.11): the node projected back by -phi carries the dent d = -phi n, whose elastic force is
@@ -303,7 +308,9 @@ int add_contact_forces(const Model& model, const BodyModel& body, BodyWorkspace&
       const int i = sample.nodes[c_k];
       s_dot += sample.weights[c_k] * (ws.p_dot[i] - ws.d_dot(body, i));
     }
-    const Vec3 v_point = ws.R * (V + ws.omega.cross(point.s) + s_dot);
+    // Relative to the obstacle's material at the point (5.11 and 5.12 against a moving one).
+    const Vec3 v_point =
+        ws.R * (V + ws.omega.cross(point.s) + s_dot) - obs.velocity_at(c + ws.R * point.s);
     f_normal -= kContactDamping * mass_n * rate * v_point.dot(point.n);
     f_normal = std::max(0.0, f_normal);
     magnitude[p] = f_normal;
@@ -343,7 +350,7 @@ int add_contact_forces(const Model& model, const BodyModel& body, BodyWorkspace&
   return touching;
 }
 
-ContactResolution resolve_penetrations(const Model& model, const BodyModel& body,
+ContactResolution resolve_penetrations(Obstacles obstacles, const BodyModel& body,
                                        Eigen::Ref<VecX> q, Eigen::Ref<VecX> v, BodyWorkspace& ws) {
   ContactResolution result;
   // Local bodies need their node velocities (and always a resplit); the shape and its Jacobian
@@ -355,10 +362,10 @@ ContactResolution resolve_penetrations(const Model& model, const BodyModel& body
   }
   std::vector<int>& nodes = ws.penetrating;
   nodes.clear();
-  for (int i = 0; i < body.n_nodes() && !model.obstacles.empty(); ++i) {
+  for (int i = 0; i < body.n_nodes() && !obstacles.empty(); ++i) {
     int o;
     Vec3 n;
-    if (deepest(model, ws.x[i], o, n) < 0) nodes.push_back(i);
+    if (deepest(obstacles, ws.x[i], o, n) < 0) nodes.push_back(i);
   }
   result.penetrating_nodes = static_cast<int>(nodes.size());
   if (body.has_local) {
@@ -370,20 +377,22 @@ ContactResolution resolve_penetrations(const Model& model, const BodyModel& body
         for (int pass = 0; pass < 4; ++pass) {
           int o;
           Vec3 n;
-          const Real phi = deepest(model, ws.x[i], o, n);
+          const Real phi = deepest(obstacles, ws.x[i], o, n);
           if (phi >= kProjectionMargin * 0.5) break;
           const Vec3 dx = (kProjectionMargin - phi) * n;  // step 1: project along n
           q.segment<3>(d_q + 3 * i) += Rt * dx;           // step 2: the new d
           ws.x[i] += dx;
           // An inelastic node impact, with Coulomb's law on the impulse (5.12): the slip
-          // changes by at most beta_f times the normal velocity change. Both only remove energy.
-          const Real vn = ws.x_dot[i].dot(n);
+          // changes by at most beta_f times the normal velocity change. Both act on the velocity
+          // relative to the obstacle's material, so they only remove energy in its frame.
+          const Vec3 v_rel = ws.x_dot[i] - obstacles[o].velocity_at(ws.x[i]);
+          const Real vn = v_rel.dot(n);
           if (vn < 0) {
             Vec3 dv = -vn * n;
-            const Vec3 slip = ws.x_dot[i] - vn * n;
+            const Vec3 slip = v_rel - vn * n;
             const Real speed = slip.norm();
             if (speed > 0) {
-              dv -= std::min(speed, model.obstacles[o].friction * -vn) * slip / speed;
+              dv -= std::min(speed, obstacles[o].friction * -vn) * slip / speed;
             }
             v.segment<3>(d_v + 3 * i) += Rt * dv;
             ws.x_dot[i] += dv;
@@ -407,7 +416,7 @@ ContactResolution resolve_penetrations(const Model& model, const BodyModel& body
   } else if (!nodes.empty()) {
     compute_body_kinematics(body, q, v, ws, false);
     factor_generalized_mass(body, q, ws);
-    resolve_generalized_impulses(model, body, nodes, v, ws);
+    resolve_generalized_impulses(obstacles, body, nodes, v, ws);
     // Position: translate c out of each obstacle by its deepest penetration.
     for (int pass = 0; pass < 8; ++pass) {
       Real worst = 0;
@@ -415,7 +424,7 @@ ContactResolution resolve_penetrations(const Model& model, const BodyModel& body
       for (int i = 0; i < body.n_nodes(); ++i) {
         int o;
         Vec3 n;
-        const Real phi = deepest(model, ws.x[i], o, n);
+        const Real phi = deepest(obstacles, ws.x[i], o, n);
         if (phi < worst) {
           worst = phi;
           push = (kProjectionMargin - phi) * n;
@@ -426,24 +435,24 @@ ContactResolution resolve_penetrations(const Model& model, const BodyModel& body
       for (Vec3& x : ws.x) x += push;
     }
   }
-  if (!model.obstacles.empty()) result.min_distance = min_obstacle_distance(model, ws);
+  if (!obstacles.empty()) result.min_distance = min_obstacle_distance(obstacles, ws);
   return result;
 }
 
-Real contact_potential_energy(const Model& model, const BodyModel& body, BodyWorkspace& ws) {
-  gather_pressing_samples(model, body, ws, frame_origin(ws));
+Real contact_potential_energy(Obstacles obstacles, const BodyModel& body, BodyWorkspace& ws) {
+  gather_pressing_samples(obstacles, body, ws, frame_origin(ws));
   Real energy = 0;
   for (const auto& point : ws.pressing) {
-    energy += 0.5 * model.obstacles[point.obstacle].elasticity *
+    energy += 0.5 * obstacles[point.obstacle].elasticity *
               body.contact_samples[point.sample].stiffness * point.phi * point.phi;
   }
   return energy;
 }
 
-Real min_obstacle_distance(const Model& model, const BodyWorkspace& ws) {
+Real min_obstacle_distance(Obstacles obstacles, const BodyWorkspace& ws) {
   Real best = 1e300;
   for (const Vec3& x : ws.x) {
-    for (const ObstacleModel& o : model.obstacles) {
+    for (const ObstacleModel& o : obstacles) {
       Vec3 n;
       best = std::min(best, signed_distance(o, x, n));
     }

@@ -22,12 +22,23 @@
 // mapped by L^T (P_i^T R^T in the body frame) through the k x k mass block, then c is translated
 // along each obstacle's normal by the deepest remaining penetration. Either way no node ends a
 // step inside an obstacle.
+//
+// Obstacles may move (tracks, Drive::obstacles): every function takes them placed at the time of
+// the state it looks at. Distances are taken against that placement, and every velocity the
+// contact acts on (the dashpot, the impacts, the slip of (5.12)) is the body point's velocity
+// minus the obstacle material's there: a moving obstacle is infinitely massive, so an inelastic
+// impact leaves the point with the obstacle's normal velocity and friction drags it along.
 #pragma once
+
+#include <span>
 
 #include "deform/body_dynamics.h"
 #include "sim/model.h"
 
 namespace pbm {
+
+// The obstacles placed at one time (Drive::obstacles, or Model::obstacles where none moves).
+using Obstacles = std::span<const ObstacleModel>;
 
 // Nodes within this distance of a surface count as touching (after projection they sit on it).
 inline constexpr Real kContactBand = 1e-6;
@@ -37,7 +48,7 @@ inline constexpr Real kProjectionMargin = 1e-9;
 // Sets ws.contact_generalized to (5.11) + (5.12) and the dashpot for a local body, and records
 // the obstacle each node touches in ws.contact. Needs kinematics and the factored mass block.
 // Returns the number of touching nodes.
-int add_contact_forces(const Model& model, const BodyModel& body, BodyWorkspace& ws);
+int add_contact_forces(Obstacles obstacles, const BodyModel& body, BodyWorkspace& ws);
 
 struct ContactResolution {
   int penetrating_nodes = 0;
@@ -46,14 +57,14 @@ struct ContactResolution {
 
 // After a step: makes every node of the body lie outside every obstacle (see above). Leaves ws
 // with the kinematics of the resolved state when it changed anything.
-ContactResolution resolve_penetrations(const Model& model, const BodyModel& body,
+ContactResolution resolve_penetrations(Obstacles obstacles, const BodyModel& body,
                                        Eigen::Ref<VecX> q, Eigen::Ref<VecX> v, BodyWorkspace& ws);
 
 // Energy stored in the obstacles' push (5.11) on a local body, sum of 0.5 a K_ii phi^2 over its
 // pressing frame points. Needs kinematics.
-Real contact_potential_energy(const Model& model, const BodyModel& body, BodyWorkspace& ws);
+Real contact_potential_energy(Obstacles obstacles, const BodyModel& body, BodyWorkspace& ws);
 
 // Signed distance of the closest node to any obstacle, from ws.x.
-Real min_obstacle_distance(const Model& model, const BodyWorkspace& ws);
+Real min_obstacle_distance(Obstacles obstacles, const BodyWorkspace& ws);
 
 }  // namespace pbm

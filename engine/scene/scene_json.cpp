@@ -471,8 +471,9 @@ void require_index_below(const JsonNode& node, int index, std::size_t count,
 
 // Checks a track target against the scene and returns it in index form: "bodies[i].q_s0[k]",
 // "gravity[k]", "springs[i].target[k]", "springs[i].stiffness", "camera.position[k]",
-// "camera.target[k]" or "camera.fov"; "bodies[i].q_s0.<name>" is accepted and rewritten to the
-// index form.
+// "camera.target[k]", "camera.fov", "obstacles[i].point[k]" or "obstacles[i].rotation[k]";
+// "bodies[i].q_s0.<name>" and an obstacle's own position key ("obstacles[i].center[k]") are
+// accepted and rewritten to the index form.
 std::string resolve_track_target(const JsonNode& node, const Scene& scene) {
   const std::string target = read_string(node);
   std::string_view rest = target;
@@ -508,6 +509,30 @@ std::string resolve_track_target(const JsonNode& node, const Scene& scene) {
     }
   }
   rest = target;
+  if (consume(rest, "obstacles") && consume_index(rest, i)) {
+    require_index_below(node, i, scene.obstacles.size(), "obstacle");
+    const ObstacleDef& obstacle = scene.obstacles[static_cast<std::size_t>(i)];
+    // Its position under the kind's own key ("center" of a box, "position" of a mesh) or
+    // "point" for every kind; stored as point.
+    const std::string_view own = obstacle.kind == ObstacleKind::box    ? ".center"
+                                 : obstacle.kind == ObstacleKind::mesh ? ".position"
+                                                                       : ".point";
+    std::string_view field = rest;
+    if ((consume(field, ".point") || consume(field, own)) && consume_index(field, k) &&
+        field.empty()) {
+      require_index_below(node, k, 3, "point component");
+      return element_path("obstacles[" + std::to_string(i) + "].point",
+                          static_cast<std::size_t>(k));
+    }
+    field = rest;
+    if (consume(field, ".rotation") && consume_index(field, k) && field.empty()) {
+      require_index_below(node, k, 3, "rotation component");
+      return target;
+    }
+    fail(node, "unknown obstacle track target '" + target + "' for obstacle '" + obstacle.name +
+                   "' (expected obstacles[i].point[k] or obstacles[i].rotation[k])");
+  }
+  rest = target;
   if (consume(rest, "camera.")) {
     if (!scene.camera) fail(node, "camera tracks need a 'camera' in the scene");
     if (rest == "fov") return target;
@@ -520,7 +545,8 @@ std::string resolve_track_target(const JsonNode& node, const Scene& scene) {
   fail(node, "unknown track target '" + target +
                  "' (expected bodies[i].q_s0[k], bodies[i].q_s0.<name>, gravity[k], "
                  "springs[i].target[k], springs[i].stiffness, camera.position[k], "
-                 "camera.target[k] or camera.fov)");
+                 "camera.target[k], camera.fov, obstacles[i].point[k] or "
+                 "obstacles[i].rotation[k])");
 }
 
 TrackDef parse_track(const JsonNode& node, const Scene& scene) {

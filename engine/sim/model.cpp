@@ -222,6 +222,13 @@ TrackModel build_track(const Scene& scene, int t) {
     track.target = TrackTarget::camera_target;
   } else if (def.target == "camera.fov" && scene.camera) {
     track.target = TrackTarget::camera_fov;
+  } else if (std::sscanf(s, "obstacles[%d].point[%d]%c", &a, &k, &tail) == 2 ||
+             std::sscanf(s, "obstacles[%d].rotation[%d]%c", &a, &k, &tail) == 2) {
+    track.target = def.target.find(".point[") != std::string::npos ? TrackTarget::obstacle_point
+                                                                   : TrackTarget::obstacle_rotation;
+    if (a < 0 || a >= static_cast<int>(scene.obstacles.size()) || k < 0 || k > 2) {
+      throw Error(scene.file, path, "no such obstacle component '" + def.target + "'");
+    }
   } else {
     throw Error(scene.file, path, "unknown track target '" + def.target + "'");
   }
@@ -298,6 +305,11 @@ Model build_model(const Scene& scene) {
   }
   for (int t = 0; t < static_cast<int>(scene.tracks.size()); ++t) {
     model.tracks.push_back(build_track(scene, t));
+    const TrackModel& track = model.tracks.back();
+    if (track.target == TrackTarget::obstacle_point ||
+        track.target == TrackTarget::obstacle_rotation) {
+      model.obstacles[track.object].moving = true;
+    }
   }
   model.constraints = build_constraints(scene, model.bodies);
   model.body_collisions.enabled = scene.solver.body_collisions;

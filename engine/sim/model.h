@@ -77,17 +77,25 @@ struct BodyModel {
   int n_generalized() const { return 6 + n_s; }  // rigid + global velocity block size k
 };
 
+// An obstacle as the scene places it. Tracks may move it (kinematic obstacles): Drive::obstacles
+// holds a copy placed at the drive's time, with the velocity of its material; the Model's copy
+// stays where the scene put it, with zero velocity.
 struct ObstacleModel {
   std::string name;
   ObstacleKind kind = ObstacleKind::plane;
-  Vec3 point = Vec3::Zero();         // plane point or box centre
+  Vec3 point = Vec3::Zero();         // plane point, box centre or mesh origin [m], world
   Vec3 normal{0, 0, 1};              // plane normal (unit)
-  Mat3 rotation = Mat3::Identity();  // box axes in world
+  Mat3 rotation = Mat3::Identity();  // box and mesh axes in world
   Vec3 half_extents{1, 1, 1};
   Vec2 size{20, 20};
   Real elasticity = 0;                       // a (5.11)
   Real friction = 0;                         // beta_f (5.12)
   std::shared_ptr<const MeshObstacle> mesh;  // mesh obstacles: placed triangles and their field
+  bool moving = false;                       // some track drives its point or rotation
+  Vec3 velocity = Vec3::Zero();              // of the material at `point` [m/s], world
+  Vec3 angular_velocity = Vec3::Zero();      // [rad/s], world
+  // Velocity of the obstacle's material at x (rigid motion about `point`) [m/s].
+  Vec3 velocity_at(const Vec3& x) const { return velocity + angular_velocity.cross(x - point); }
 };
 
 struct SpringModel {
@@ -107,11 +115,13 @@ enum class TrackTarget {
   spring_stiffness,
   camera_position,
   camera_target,
-  camera_fov
+  camera_fov,
+  obstacle_point,    // obstacles[i].point[k]: plane point, box centre, mesh origin
+  obstacle_rotation  // obstacles[i].rotation[k]: rotation vector applied before the orientation
 };
 struct TrackModel {
   TrackTarget target = TrackTarget::gravity;
-  int object = 0;  // body or spring index
+  int object = 0;  // body, spring or obstacle index
   int index = 0;   // parameter or vector component
   Interpolation interpolation = Interpolation::linear;
   std::vector<Keyframe> keys;

@@ -42,7 +42,8 @@ Snapshot make_snapshot(const Model& model, const State& state, const Inputs& inp
     out.color = body.color.cast<float>();
     out.roughness = static_cast<float>(model.scene.bodies[b].material.roughness);
   }
-  for (const ObstacleModel& o : model.obstacles) {
+  // Where the tracks put each obstacle at this time (evaluate_drive above placed them).
+  for (const ObstacleModel& o : ws.drive.obstacles) {
     ObstacleSnapshot out;
     out.kind = o.kind;
     out.point = o.point.cast<float>();
@@ -51,6 +52,12 @@ Snapshot make_snapshot(const Model& model, const State& state, const Inputs& inp
     out.rotation = o.rotation.cast<float>();
     out.half_extents = o.half_extents.cast<float>();
     out.mesh = o.mesh;
+    if (o.mesh) {
+      // x = R R0^T (x0 - p0) + p: the load placement's triangles carried to the current one.
+      const Mat3 motion = o.rotation * o.mesh->rotation.transpose();
+      out.mesh_rotation = motion.cast<float>();
+      out.mesh_offset = (o.point - motion * o.mesh->position).cast<float>();
+    }
     snap.obstacles.push_back(out);
   }
   for (std::size_t s = 0; s < model.springs.size(); ++s) {

@@ -30,12 +30,16 @@ struct BodySnapshot {
 
 struct ObstacleSnapshot {
   ObstacleKind kind = ObstacleKind::plane;
-  Vec3f point = Vec3f::Zero();                             // plane point / box centre
+  Vec3f point = Vec3f::Zero();                             // plane point / box centre, now
   Vec3f normal{0, 0, 1};                                   // plane
   Eigen::Vector2f size{20, 20};                            // plane: drawn extent
   Eigen::Matrix3f rotation = Eigen::Matrix3f::Identity();  // box axes
   Vec3f half_extents{1, 1, 1};
-  std::shared_ptr<const MeshObstacle> mesh;  // mesh obstacles: world triangles
+  std::shared_ptr<const MeshObstacle> mesh;  // mesh obstacles: world triangles at load
+  // Mesh obstacles moved by tracks: draw each vertex x0 of `mesh` at mesh_rotation x0 +
+  // mesh_offset.
+  Eigen::Matrix3f mesh_rotation = Eigen::Matrix3f::Identity();
+  Vec3f mesh_offset = Vec3f::Zero();
 };
 
 struct SpringSnapshot {

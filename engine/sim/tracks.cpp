@@ -1,6 +1,9 @@
 #include "sim/tracks.h"
 
 #include <algorithm>
+#include <cmath>
+
+#include <Eigen/Geometry>
 
 namespace pbm {
 
@@ -29,6 +32,82 @@ Real evaluate_track(const TrackModel& track, Real t) {
          (x3 - x2) * m1;
 }
 
+Real evaluate_track_rate(const TrackModel& track, Real t) {
+  const auto& k = track.keys;
+  if (k.size() < 2 || t < k.front().time || t >= k.back().time) return 0;
+  if (track.interpolation == Interpolation::step) return 0;
+  const auto it = std::upper_bound(k.begin(), k.end(), t,
+                                   [](Real time, const Keyframe& key) { return time < key.time; });
+  const std::size_t i = static_cast<std::size_t>(it - k.begin()) - 1;
+  const Keyframe& a = k[i];
+  const Keyframe& b = k[i + 1];
+  const Real h = b.time - a.time;
+  if (track.interpolation == Interpolation::linear) return (b.value - a.value) / h;
+  // The derivative of evaluate_track's Hermite cubic, d/dt = (1 / h) d/dx.
+  auto slope = [&k](std::size_t j) {
+    const std::size_t lo = j == 0 ? 0 : j - 1;
+    const std::size_t hi = std::min(j + 1, k.size() - 1);
+    return (k[hi].value - k[lo].value) / (k[hi].time - k[lo].time);
+  };
+  const Real m0 = slope(i) * h, m1 = slope(i + 1) * h;
+  const Real x = (t - a.time) / h, x2 = x * x;
+  return ((6 * x2 - 6 * x) * a.value + (3 * x2 - 4 * x + 1) * m0 + (-6 * x2 + 6 * x) * b.value +
+          (3 * x2 - 2 * x) * m1) /
+         h;
+}
+
+namespace {
+
+// exp([r]x) and the left Jacobian J_l(r) = I + (1 - cos a) / a^2 [r]x + (a - sin a) / a^3 [r]x^2,
+// a = |r|, which maps r-dot to the world angular velocity of exp([r]x) R0.
+void rotation_and_jacobian(const Vec3& r, Mat3& R, Mat3& J) {
+  const Real a = r.norm();
+  Mat3 K;
+  K << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
+  Real c1, c2;  // (1 - cos a) / a^2, (a - sin a) / a^3; their series below 1e-4 rad
+  if (a < 1e-4) {
+    c1 = 0.5 - a * a / 24;
+    c2 = 1.0 / 6 - a * a / 120;
+    R = Mat3::Identity() + K + c1 * K * K;
+  } else {
+    c1 = (1 - std::cos(a)) / (a * a);
+    c2 = (a - std::sin(a)) / (a * a * a);
+    R = Eigen::AngleAxis<Real>(a, r / a).toRotationMatrix();
+  }
+  J = Mat3::Identity() + c1 * K + c2 * K * K;
+}
+
+}  // namespace
+
+void place_obstacles(const Model& model, Real t, std::vector<ObstacleModel>& obstacles) {
+  obstacles.resize(model.obstacles.size());
+  for (std::size_t o = 0; o < model.obstacles.size(); ++o) {
+    const ObstacleModel& source = model.obstacles[o];
+    ObstacleModel& placed = obstacles[o];
+    placed = source;
+    if (!source.moving) continue;
+    Vec3 r = Vec3::Zero(), r_dot = Vec3::Zero();
+    bool rotates = false;
+    for (const TrackModel& track : model.tracks) {
+      if (track.object != static_cast<int>(o)) continue;
+      if (track.target == TrackTarget::obstacle_point) {
+        placed.point[track.index] = evaluate_track(track, t);
+        placed.velocity[track.index] = evaluate_track_rate(track, t);
+      } else if (track.target == TrackTarget::obstacle_rotation) {
+        r[track.index] = evaluate_track(track, t);
+        r_dot[track.index] = evaluate_track_rate(track, t);
+        rotates = true;
+      }
+    }
+    if (!rotates) continue;
+    Mat3 R, J;
+    rotation_and_jacobian(r, R, J);
+    placed.rotation = R * source.rotation;
+    placed.normal = R * source.normal;
+    placed.angular_velocity = J * r_dot;
+  }
+}
+
 void evaluate_drive(const Model& model, Real t, Drive& drive) {
   drive.gravity = model.gravity;
   drive.q_s0.resize(model.bodies.size());
@@ -45,6 +124,7 @@ void evaluate_drive(const Model& model, Real t, Drive& drive) {
     drive.camera_up = model.scene.camera->up;
     drive.camera_fov = model.scene.camera->fov;
   }
+  place_obstacles(model, t, drive.obstacles);
   for (const TrackModel& track : model.tracks) {
     const Real value = evaluate_track(track, t);
     switch (track.target) {
@@ -69,6 +149,9 @@ void evaluate_drive(const Model& model, Real t, Drive& drive) {
       case TrackTarget::camera_fov:
         drive.camera_fov = value;
         break;
+      case TrackTarget::obstacle_point:
+      case TrackTarget::obstacle_rotation:
+        break;  // place_obstacles
     }
   }
 }

@@ -11,6 +11,10 @@ namespace pbm {
 // linear, or smooth (cubic Hermite with Catmull-Rom tangents, C1 through every key).
 Real evaluate_track(const TrackModel& track, Real t);
 
+// d/dt of evaluate_track at t: 0 outside the keys and for step tracks; at a key, the slope of
+// the interval that starts there (the one evaluate_track uses).
+Real evaluate_track_rate(const TrackModel& track, Real t);
+
 // Everything the tracks may change, at one time.
 struct Drive {
   Vec3 gravity = Vec3::Zero();
@@ -20,8 +24,18 @@ struct Drive {
   // The scene's camera (renderer only; unused without one).
   Vec3 camera_position = Vec3::Zero(), camera_target = Vec3::Zero(), camera_up = Vec3::UnitZ();
   Real camera_fov = 40;
+  // The model's obstacles where their tracks put them at this time, with the velocity of their
+  // material (sec. 5.2.1 against a moving obstacle); copies of Model::obstacles when none moves.
+  std::vector<ObstacleModel> obstacles;
 };
 
 void evaluate_drive(const Model& model, Real t, Drive& drive);
+
+// Only the obstacles of evaluate_drive: `obstacles` becomes the model's, placed at time t.
+// A point track sets the point and its velocity from the track's rate; rotation tracks give the
+// rotation vector r(t) (world frame, about the point), R(t) = exp([r]x) R_scene, and the angular
+// velocity omega = J_l(r) r-dot (J_l the left Jacobian of SO(3)). A plane's normal turns with R.
+// No allocation once `obstacles` has the model's size.
+void place_obstacles(const Model& model, Real t, std::vector<ObstacleModel>& obstacles);
 
 }  // namespace pbm

@@ -84,7 +84,7 @@ void evaluate_derivative(const Model& model, const Inputs& inputs, Workspace& ws
     factor_generalized_mass(body, qb, bw);  // the contact forces need the body's mobility
     ws.stage_seconds[static_cast<int>(StepStage::forces)] += seconds_since(t0);
     t0 = Clock::now();
-    ws.contacts += add_contact_forces(model, body, bw);
+    ws.contacts += add_contact_forces(ws.drive.obstacles, body, bw);
     ws.stage_seconds[static_cast<int>(StepStage::contact_forces)] += seconds_since(t0);
     t0 = Clock::now();
     auto out = v_dot.segment(body.v_offset, body.v_size);
@@ -164,6 +164,35 @@ std::string describe_nan(const Model& model, const State& s) {
     if (what) return "body '" + body.name + "': " + what + " became NaN or infinite";
   }
   return "state became NaN or infinite";
+}
+
+// Kinetic energy moving obstacles may give the bodies in a frame from t0 to t1 [J]. An obstacle
+// is infinitely massive: a body it meets at surface speed w leaves with up to 2 w (an elastic
+// bounce, 5.11), so every body may gain 0.5 m (2 w)^2 with w the fastest surface point of any
+// obstacle at the frame's start, middle or end. The surface speed is |v| + |omega| times the
+// obstacle's reach from its point. 0 when nothing moves.
+Real moving_obstacle_allowance(const Model& model, Real t0, Real t1) {
+  bool any = false;
+  for (const ObstacleModel& o : model.obstacles) any = any || o.moving;
+  if (!any) return 0;
+  std::vector<ObstacleModel> placed;
+  Real w = 0;
+  for (const Real t : {t0, 0.5 * (t0 + t1), t1}) {
+    place_obstacles(model, t, placed);
+    for (const ObstacleModel& o : placed) {
+      if (!o.moving) continue;
+      Real reach = 0.5 * o.size.norm();
+      if (o.kind == ObstacleKind::box) reach = o.half_extents.norm();
+      if (o.kind == ObstacleKind::mesh) {
+        const Vec3 centre = 0.5 * (o.mesh->lower + o.mesh->upper);
+        reach = (o.mesh->upper - o.mesh->lower).norm() + (o.mesh->position - centre).norm();
+      }
+      w = std::max(w, o.velocity.norm() + o.angular_velocity.norm() * reach);
+    }
+  }
+  Real mass = 0;
+  for (const BodyModel& body : model.bodies) mass += body.mass;
+  return 0.5 * mass * (2 * w) * (2 * w);
 }
 
 }  // namespace
@@ -246,13 +275,15 @@ bool advance_substep(const Model& model, State& state, Real dt, Workspace& ws, i
     }
   }
   // Bodies against bodies first (5.2.2), then obstacles (5.2.1), so that obstacles have the last
-  // word and no node is left inside one.
+  // word and no node is left inside one: where their tracks put them at the step's end, the time
+  // of the positions being resolved (the rest of the drive stays at the last evaluation's time).
+  place_obstacles(model, state.time, ws.drive.obstacles);
   ws.body_collision_stats =
       resolve_body_collisions(model, state, ws, ws.body_collisions, model.body_collisions);
   ws.contacts += ws.body_collision_stats.contacts;  // the end of 5.2.2's step reduction
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     const BodyModel& body = model.bodies[b];
-    resolve_penetrations(model, body, state.q.segment(body.q_offset, body.q_size),
+    resolve_penetrations(ws.drive.obstacles, body, state.q.segment(body.q_offset, body.q_size),
                          state.v.segment(body.v_offset, body.v_size), ws.bodies[b]);
   }
   ws.stage_seconds[static_cast<int>(StepStage::collisions)] += seconds_since(t0);
@@ -273,12 +304,13 @@ void measure_state(const Model& model, const State& state, Workspace& ws, FrameS
     bw.q_s_rest = ws.drive.q_s0[b];
     compute_body_kinematics(body, q, v, bw);
     BodyEnergy e = compute_body_energy(body, q, v, ws.drive.gravity, bw);
-    e.elastic += contact_potential_energy(model, body, bw);
+    e.elastic += contact_potential_energy(ws.drive.obstacles, body, bw);
     stats.kinetic += e.kinetic;
     stats.elastic += e.elastic;
     stats.potential += e.potential;
     if (!model.obstacles.empty()) {
-      stats.min_distance = std::min(stats.min_distance, min_obstacle_distance(model, bw));
+      stats.min_distance =
+          std::min(stats.min_distance, min_obstacle_distance(ws.drive.obstacles, bw));
     }
     BodyFrameStats& bs = stats.bodies[b];
     bs.q_s = bw.q_s;
@@ -322,6 +354,7 @@ FrameResult advance_frame(const Model& model, State& state, Workspace& ws) {
     const Real k = std::max(ws.drive.spring_stiffness[s], end_drive.spring_stiffness[s]);
     floor += k * d.squaredNorm();
   }
+  floor += moving_obstacle_allowance(model, state.time, t_end);
   // Assembling parts (7.16) gain the kinetic energy Baumgarte's feedback gives them.
   if (!model.constraints.empty()) {
     floor += constraint_energy_allowance(model, state.q, state.v, ws.bodies);
