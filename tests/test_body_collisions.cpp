@@ -163,6 +163,23 @@ Totals totals(Stepper& s) {
   return t;
 }
 
+// One substep, then the body collisions alone, with the totals around the collision call.
+struct CollisionCall {
+  bool ok = false;
+  Totals before, after;
+  BodyCollisionStats stats;
+};
+
+CollisionCall advance_and_collide(Stepper& s) {
+  CollisionCall call;
+  int evaluations = 0;
+  call.ok = advance_substep(s.sim.model, s.sim.state, s.sim.model.solver.dt, s.sim.ws, evaluations);
+  call.before = totals(s);
+  call.stats = resolve_body_collisions(s.sim.model, s.sim.state, s.sim.ws, s.cws, s.options);
+  call.after = totals(s);
+  return call;
+}
+
 // (b) Two balls meeting off-centre in free space, at every pair of levels: every call conserves
 // the total linear momentum to 1e-9 relative and never raises the kinetic energy.
 class FreeCollision : public testing::TestWithParam<std::pair<DeformLevel, DeformLevel>> {};
@@ -178,14 +195,11 @@ TEST_P(FreeCollision, ConservesMomentumAndDoesNotCreateKineticEnergy) {
   Real worst_momentum = 0, worst_energy = -1e300, worst_material = -1e300;
   int calls_with_contacts = 0;
   for (int k = 0; k < 500; ++k) {  // 1 s: they meet near t = 0.25 s
-    int evaluations = 0;
-    ASSERT_TRUE(
-        advance_substep(s.sim.model, s.sim.state, s.sim.model.solver.dt, s.sim.ws, evaluations));
-    const Totals before = totals(s);
-    const BodyCollisionStats stats =
-        resolve_body_collisions(s.sim.model, s.sim.state, s.sim.ws, s.cws, s.options);
-    const Totals after = totals(s);
-    if (stats.contacts == 0) continue;
+    const CollisionCall call = advance_and_collide(s);
+    ASSERT_TRUE(call.ok);
+    const Totals& before = call.before;
+    const Totals& after = call.after;
+    if (call.stats.contacts == 0) continue;
     ++calls_with_contacts;
     worst_momentum =
         std::max(worst_momentum, (after.momentum - before.momentum).norm() / before.scale);
@@ -252,15 +266,12 @@ HeadOn head_on(Real elasticity) {
   const Totals first = totals(s);
   run.energy_before = first.kinetic + first.elastic;
   for (int k = 0; k < 1000; ++k) {  // 1 s: they meet near t = 0.33 s
-    int evaluations = 0;
-    EXPECT_TRUE(
-        advance_substep(s.sim.model, s.sim.state, s.sim.model.solver.dt, s.sim.ws, evaluations));
-    const Totals before = totals(s);
-    const BodyCollisionStats stats =
-        resolve_body_collisions(s.sim.model, s.sim.state, s.sim.ws, s.cws, s.options);
-    const Totals after = totals(s);
-    run.pressing += stats.pressing;
-    if (stats.contacts > 0) {
+    const CollisionCall call = advance_and_collide(s);
+    EXPECT_TRUE(call.ok);
+    const Totals& before = call.before;
+    const Totals& after = call.after;
+    run.pressing += call.stats.pressing;
+    if (call.stats.contacts > 0) {
       run.worst_momentum =
           std::max(run.worst_momentum, (after.momentum - before.momentum).norm() / before.scale);
       run.worst_kinetic =

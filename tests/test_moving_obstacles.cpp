@@ -238,17 +238,11 @@ TEST(MovingObstacles, TracksRoundTripThroughTheFile) {
   EXPECT_EQ(scene.tracks[2].target, "obstacles[0].point[0]");
   const std::string text = scene_to_json(scene);
   const Scene again = parse_scene(text, "tracks.json");
+  // The writer prints every track field (keys at full precision), so equal texts mean equal
+  // tracks.
   EXPECT_EQ(scene_to_json(again), text);
   ASSERT_EQ(again.tracks.size(), 3u);
-  for (std::size_t i = 0; i < 3; ++i) {
-    EXPECT_EQ(again.tracks[i].target, scene.tracks[i].target);
-    EXPECT_EQ(again.tracks[i].interpolation, scene.tracks[i].interpolation);
-    ASSERT_EQ(again.tracks[i].keys.size(), scene.tracks[i].keys.size());
-    for (std::size_t k = 0; k < scene.tracks[i].keys.size(); ++k) {
-      EXPECT_EQ(again.tracks[i].keys[k].time, scene.tracks[i].keys[k].time);
-      EXPECT_EQ(again.tracks[i].keys[k].value, scene.tracks[i].keys[k].value);
-    }
-  }
+  EXPECT_EQ(again.tracks[0].interpolation, Interpolation::smooth);
   const Model model = build_model(again);
   EXPECT_TRUE(model.obstacles[0].moving);
   EXPECT_TRUE(model.obstacles[1].moving);
