@@ -11,8 +11,8 @@
 #include "collide/body_collisions.h"
 #include "collide/continuous_collision.h"
 #include "collide/rigid_contact.h"
-#include "collide/triangle_geometry.h"
 #include "collide/self_collision.h"
+#include "collide/triangle_geometry.h"
 #include "deform/body_dynamics.h"
 #include "scene_builders.h"
 #include "sim/state.h"
@@ -81,7 +81,8 @@ TEST(ContinuousCollision, CrossingEdgesAreFoundAndPassingEdgesAreNot) {
   EXPECT_NEAR(-c.weights[3], 0.5, 1e-9);  // u: the middle of b
   EXPECT_NEAR(c.normal.z(), 1.0, 1e-12);
   // Off-centre crossing with both edges moving: a's points at x = 0.3, b sweeping in y.
-  const FourPoints y0 = {Vec3(0.3, -1, 0.2), Vec3(0.3, 1, 0.6), Vec3(-1, 0.1, 0.9), Vec3(1, 0.1, 0.9)};
+  const FourPoints y0 = {Vec3(0.3, -1, 0.2), Vec3(0.3, 1, 0.6), Vec3(-1, 0.1, 0.9),
+                         Vec3(1, 0.1, 0.9)};
   FourPoints y1 = y0;
   for (int k = 2; k < 4; ++k) y1[k].z() -= 1.0;  // b descends through z of a at y = 0.1: 0.42
   const ContinuousContact d = detect_edge_edge_collision(y0, y1, 1e-9);
@@ -112,8 +113,8 @@ TEST(ContinuousCollision, CrossingEdgesAreFoundAndPassingEdgesAreNot) {
 
 // Per substep, the pairs of triangles sharing no node that intersect (count_self_intersections).
 struct SceneRun {
-  int worst = 0;              // most crossing pairs after any substep
-  int substeps_crossed = 0;   // substeps that ended with at least one
+  int worst = 0;             // most crossing pairs after any substep
+  int substeps_crossed = 0;  // substeps that ended with at least one
   int proximity = 0, continuous = 0, zone_nodes = 0, estimated = 0;
   double self_seconds = 0;
   Real flattest = 1e300;  // least height of the body's nodes' bounding box [m]
@@ -160,8 +161,8 @@ void print(const char* name, bool self, const SceneRun& r, int substeps) {
   std::printf(
       "%s, self_collision %s: worst %d crossing pairs, %d substeps crossed, flattest %.3f m, "
       "%d proximity pairs, %d continuous hits, %d zone nodes, self stage %.1f us/substep\n",
-      name, self ? "on" : "off", r.worst, r.substeps_crossed, r.flattest, r.proximity,
-      r.continuous, r.zone_nodes, 1e6 * r.self_seconds / substeps);
+      name, self ? "on" : "off", r.worst, r.substeps_crossed, r.flattest, r.proximity, r.continuous,
+      r.zone_nodes, 1e6 * r.self_seconds / substeps);
 }
 
 ObstacleDef ground() {
@@ -200,7 +201,7 @@ TEST(SelfCollision, SquashedShellDoesNotCrossItself) {
   EXPECT_GT(off.worst, 0);  // the scene does cross itself: the test can fail
   EXPECT_EQ(on.worst, 0);
   EXPECT_GT(on.proximity, 0);
-  EXPECT_EQ(on.estimated, 0);  // the world recorded every step's start
+  EXPECT_EQ(on.estimated, 0);   // the world recorded every step's start
   EXPECT_LT(on.flattest, 0.5);  // it was pressed flat (radius 1)
 }
 

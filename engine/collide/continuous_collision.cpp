@@ -64,6 +64,14 @@ Vec3 fallback_normal(const Vec3& a, const Vec3& b) {
   return Vec3::UnitZ();
 }
 
+// Whether e is farther than tolerance from the plane spanned by a and b (the node from the
+// face's plane, or the two edges' lines from each other): a lower bound of the elements'
+// distance, cheap, so most candidate times need no closest points.
+bool farther_than(const Vec3& a, const Vec3& b, const Vec3& e, Real tolerance) {
+  const Vec3 n = a.cross(b);
+  return std::abs(n.dot(e)) > tolerance * n.norm();
+}
+
 }  // namespace
 
 int coplanarity_candidate_times(const std::array<Real, 4>& c, std::array<Real, 7>& times) {
@@ -114,6 +122,7 @@ ContinuousContact detect_node_face_collision(const FourPoints& x0, const FourPoi
   ContinuousContact c;
   for (int k = 0; k < n; ++k) {
     const FourPoints x = at_time(x0, x1, times[k]);
+    if (farther_than(x[2] - x[1], x[3] - x[1], x[0] - x[1], tolerance)) continue;
     const TrianglePoint y = closest_point_on_triangle(x[0], x[1], x[2], x[3]);
     const Real distance = (x[0] - y.point).norm();
     if (!(distance <= tolerance)) continue;
@@ -138,6 +147,7 @@ ContinuousContact detect_edge_edge_collision(const FourPoints& x0, const FourPoi
   ContinuousContact c;
   for (int k = 0; k < n; ++k) {
     const FourPoints x = at_time(x0, x1, times[k]);
+    if (farther_than(x[1] - x[0], x[3] - x[2], x[2] - x[0], tolerance)) continue;
     const SegmentPoints p = closest_points_on_segments(x[0], x[1], x[2], x[3]);
     const Real distance = (p.on_p - p.on_q).norm();
     if (!(distance <= tolerance)) continue;

@@ -6,11 +6,11 @@
 // in [0, 1], found to rounding by bisection between the cubic's turning points (where it is
 // monotone), are the candidate times; the turning points themselves are tried too, so a pair
 // that grazes the plane without crossing it is not lost, and so are t = 0 and t = 1 (a pair
-// ending the step touching counts: the surfaces are closed sets). At each candidate time in increasing
-// order the distance between the elements is measured (closest points, triangle_geometry.h); the
-// first one within tolerance is the contact. A pair that stays coplanar for the whole step (the
-// cubic vanishes identically) is seen only at t = 0: in-plane motion is left to the proximity
-// stage.
+// ending the step touching counts: the surfaces are closed sets). At each candidate time in
+// increasing order the distance between the elements is measured (closest points,
+// triangle_geometry.h); the first one within tolerance is the contact. A pair that stays coplanar
+// for the whole step (the cubic vanishes identically) is seen only at t = 0: in-plane motion is
+// left to the proximity stage.
 //
 // Points: node-face: 0 the node, 1..3 the triangle (counter-clockwise from outside); edge-edge:
 // 0-1 the first edge, 2-3 the second.
@@ -29,10 +29,10 @@ namespace pbm {
 
 struct ContinuousContact {
   bool hit = false;
-  Real t = 0;                               // time fraction of the first contact, in [0, 1]
-  std::array<Real, 4> weights{};            // c_k above, at t
-  Vec3 normal = Vec3::UnitZ();              // unit, world, at t (see above)
-  Real distance = 0;                        // between the elements at t [m]
+  Real t = 0;                     // time fraction of the first contact, in [0, 1]
+  std::array<Real, 4> weights{};  // c_k above, at t
+  Vec3 normal = Vec3::UnitZ();    // unit, world, at t (see above)
+  Real distance = 0;              // between the elements at t [m]
 };
 
 using FourPoints = std::array<Vec3, 4>;

@@ -185,17 +185,16 @@ void find_proximity(const BodyModel& body, int b, const std::vector<Vec3>& x_sta
 
 // Stage 2, response: inelastic impulses with Coulomb's cone (5.13), projected Gauss-Seidel in
 // alternating sweeps (as solve_impulses in body_collisions.cpp).
-void solve_proximity(const BodyModel& body, const std::vector<Vec3>& x_start,
-                     std::vector<Vec3>& x, std::vector<Vec3>& x_dot, Real dt,
-                     const BodyCollisionOptions& options, SelfCollisionWorkspace& sws) {
+void solve_proximity(const BodyModel& body, const std::vector<Vec3>& x_start, std::vector<Vec3>& x,
+                     std::vector<Vec3>& x_dot, Real dt, const BodyCollisionOptions& options,
+                     SelfCollisionWorkspace& sws) {
   std::vector<Pair>& pairs = sws.proximity;
   const int m = static_cast<int>(pairs.size());
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     Real change = 0, largest = 0;
     for (int step = 0; step < m; ++step) {
       Pair& p = pairs[iteration % 2 == 0 ? step : m - 1 - step];
-      const Vec3 u =
-          p.basis.transpose() * relative_velocity(x_start, x, p.nodes, p.weights, dt);
+      const Vec3 u = p.basis.transpose() * relative_velocity(x_start, x, p.nodes, p.weights, dt);
       Vec3 j = p.impulse;
       j[0] = std::max(0.0, j[0] - (u[0] + p.allowed / dt) / p.inverse_mass[0]);
       if (options.friction > 0) {
@@ -324,9 +323,14 @@ int resolve_impact_zones(const BodyModel& body, int b, const std::vector<Vec3>& 
 }  // namespace
 
 void size_self_collision_workspace(const Model& model, SelfCollisionWorkspace& sws) {
-  bool fits = sws.topology.size() == model.bodies.size();
+  // A copied workspace has empty trees and boxes (SurfaceBroadphase): rebuild.
+  bool fits = sws.topology.size() == model.bodies.size() &&
+              sws.broadphase.boxes.size() == model.bodies.size();
   for (std::size_t b = 0; fits && b < model.bodies.size(); ++b) {
     const BodyModel& body = model.bodies[b];
+    const std::size_t triangles = body.has_local ? body.tessellation.triangles.size() : 0;
+    fits = sws.broadphase.boxes[b].size() == triangles;
+    if (!fits) break;
     fits = sws.x_start[b].size() == (body.has_local ? static_cast<std::size_t>(body.n_nodes()) : 0);
   }
   if (fits) return;
@@ -396,7 +400,8 @@ bool resolve_self_collisions(const BodyModel& body, int b, const std::vector<Vec
 
   t0 = Clock::now();
   const Topology& topo = sws.topology[b];
-  for (int pass = 0; pass < kContinuousPasses; ++pass) {
+  bool clean = false;  // the last pass found nothing (and so changed nothing)
+  for (int pass = 0; pass < kContinuousPasses && !clean; ++pass) {
     if (pass > 0) gather_candidates(body, b, x_start, x, margin, sws);
     ++stats.continuous_passes;
     int hits = 0;
@@ -410,10 +415,11 @@ bool resolve_self_collisions(const BodyModel& body, int b, const std::vector<Vec
     }
     stats.continuous_collisions += hits;
     moved |= hits > 0;
-    if (hits == 0) break;
+    clean = hits == 0;
   }
   stats.seconds_continuous += seconds_since(t0);
 
+  if (clean) return moved;
   t0 = Clock::now();
   const int rounds = resolve_impact_zones(body, b, x_start, x, x_dot, margin, sws, stats);
   stats.zone_rounds += rounds;

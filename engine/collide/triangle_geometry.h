@@ -31,7 +31,7 @@ struct TrianglePoint {
 TrianglePoint closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 
 struct SegmentPoints {
-  Real s = 0, u = 0;  // along p0 -> p1 and q0 -> q1, in [0, 1]
+  Real s = 0, u = 0;                              // along p0 -> p1 and q0 -> q1, in [0, 1]
   Vec3 on_p = Vec3::Zero(), on_q = Vec3::Zero();  // the points, world
 };
 SegmentPoints closest_points_on_segments(const Vec3& p0, const Vec3& p1, const Vec3& q0,

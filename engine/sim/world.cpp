@@ -278,8 +278,9 @@ bool advance_substep(const Model& model, State& state, Real dt, Workspace& ws, i
   }
   // Bodies against bodies first (5.2.2), then obstacles (5.2.1), so that no node is left inside
   // an obstacle by another body, then each local body with itself (its guarantee needs the
-  // obstacles' moves inside the checked motion; collide/body_collisions.h): obstacles where their tracks put them at the step's end, the time
-  // of the positions being resolved (the rest of the drive stays at the last evaluation's time).
+  // obstacles' moves inside the checked motion; collide/body_collisions.h): obstacles where their
+  // tracks put them at the step's end, the time of the positions being resolved (the rest of the
+  // drive stays at the last evaluation's time).
   place_obstacles(model, state.time, ws.drive.obstacles);
   ws.body_collision_stats =
       resolve_body_collisions(model, state, ws, ws.body_collisions, model.body_collisions);
