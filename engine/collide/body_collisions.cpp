@@ -21,22 +21,6 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-void build_rings(const BodyModel& body, Scratch& s) {
-  s.ring.assign(static_cast<std::size_t>(body.n_nodes()), {});
-  for (int i = 0; i < body.n_nodes(); ++i) s.ring[i].push_back(i);
-  for (const std::array<int, 3>& t : body.tessellation.triangles) {
-    for (int a = 0; a < 3; ++a) {
-      for (int b = 0; b < 3; ++b) {
-        if (a != b) s.ring[t[a]].push_back(t[b]);
-      }
-    }
-  }
-  for (std::vector<int>& r : s.ring) {
-    std::sort(r.begin(), r.end());
-    r.erase(std::unique(r.begin(), r.end()), r.end());
-  }
-}
-
 bool sized_for(const Model& model, const BodyCollisionWorkspace& cws) {
   if (cws.bodies.size() != model.bodies.size() ||
       cws.broadphase.boxes.size() != model.bodies.size()) {
@@ -44,7 +28,7 @@ bool sized_for(const Model& model, const BodyCollisionWorkspace& cws) {
   }
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     const BodyModel& body = model.bodies[b];
-    if (static_cast<int>(cws.bodies[b].ring.size()) != body.n_nodes() ||
+    if (static_cast<int>(cws.bodies[b].x0.size()) != body.n_nodes() ||
         cws.bodies[b].nu.size() != body.n_generalized() ||
         cws.broadphase.boxes[b].size() != body.tessellation.triangles.size()) {
       return false;
@@ -60,7 +44,6 @@ void size_workspace(const Model& model, BodyCollisionWorkspace& cws) {
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     const BodyModel& body = model.bodies[b];
     Scratch& s = cws.bodies[b];
-    build_rings(body, s);
     s.stiffness = node_contact_stiffness(body);
     const auto n = static_cast<std::size_t>(body.n_nodes());
     s.x0.assign(n, Vec3::Zero());
@@ -223,24 +206,6 @@ Side side_b(const BodyContact& c) {
   return Side{c.body_b, c.nodes_b.data(), c.w_b.data(), 3};
 }
 
-// Triangle t of the same body holds the node or one of its ring neighbours.
-bool adjacent(const Scratch& s, int node, const std::array<int, 3>& t) {
-  const std::vector<int>& ring = s.ring[node];
-  for (int v : t) {
-    if (std::binary_search(ring.begin(), ring.end(), v)) return true;
-  }
-  return false;
-}
-
-bool share_node(const std::array<int, 3>& a, const std::array<int, 3>& b) {
-  for (int u : a) {
-    for (int v : b) {
-      if (u == v) return true;
-    }
-  }
-  return false;
-}
-
 void make_basis(const Vec3& n, Mat3& basis) {
   const Vec3 t1 = n.unitOrthogonal();
   basis.col(0) = n;
@@ -259,16 +224,13 @@ bool joined(const Model& model, int a, int b) {
 }
 
 // Steps 1 and 2: candidate triangle pairs, their intersection test, node candidates.
-void gather_candidates(const Model& model, BodyCollisionWorkspace& cws,
-                       const BodyCollisionOptions& options, BodyCollisionStats& stats) {
+void gather_candidates(const Model& model, BodyCollisionWorkspace& cws, BodyCollisionStats& stats) {
   cws.candidates.clear();
   const int n_bodies = static_cast<int>(model.bodies.size());
   for (int a = 0; a < n_bodies; ++a) {
-    for (int b = a; b < n_bodies; ++b) {
-      const bool self = a == b;
-      if (self && !(options.self_collision && model.bodies[a].has_local)) continue;
-      if (!self && !cws.broadphase.body_boxes[a].overlaps(cws.broadphase.body_boxes[b])) continue;
-      if (!self && joined(model, a, b)) continue;
+    for (int b = a + 1; b < n_bodies; ++b) {
+      if (!cws.broadphase.body_boxes[a].overlaps(cws.broadphase.body_boxes[b])) continue;
+      if (joined(model, a, b)) continue;
       cws.pairs.clear();
       collect_triangle_pairs(a, b, cws.broadphase, cws.pairs);
       const auto& tri_a = model.bodies[a].tessellation.triangles;
@@ -278,18 +240,13 @@ void gather_candidates(const Model& model, BodyCollisionWorkspace& cws,
       for (const std::array<int, 2>& p : cws.pairs) {
         const std::array<int, 3>& ta = tri_a[p[0]];
         const std::array<int, 3>& tb = tri_b[p[1]];
-        if (self && share_node(ta, tb)) continue;
         ++stats.triangle_pairs;
         if (triangles_intersect(sa.x[ta[0]], sa.x[ta[1]], sa.x[ta[2]], sb.x[tb[0]], sb.x[tb[1]],
                                 sb.x[tb[2]])) {
           ++stats.intersecting_triangles;
         }
-        for (int v : ta) {
-          if (!self || !adjacent(sa, v, tb)) cws.candidates.push_back({a, v, b, p[1]});
-        }
-        for (int v : tb) {
-          if (!self || !adjacent(sb, v, ta)) cws.candidates.push_back({b, v, a, p[0]});
-        }
+        for (int v : ta) cws.candidates.push_back({a, v, b, p[1]});
+        for (int v : tb) cws.candidates.push_back({b, v, a, p[0]});
       }
     }
   }
@@ -301,7 +258,7 @@ void gather_candidates(const Model& model, BodyCollisionWorkspace& cws,
 // Step 2: each candidate node with its closest triangle point of the other body; the pairs
 // within the margin become contacts.
 void pair_nodes(const Model& model, BodyCollisionWorkspace& cws,
-                const BodyCollisionOptions& options, Real dt, BodyCollisionStats& stats) {
+                const BodyCollisionOptions& options, BodyCollisionStats& stats) {
   cws.contacts.clear();
   const auto& cand = cws.candidates;
   for (std::size_t first = 0; first < cand.size();) {
@@ -334,17 +291,7 @@ void pair_nodes(const Model& model, BodyCollisionWorkspace& cws,
     if (!(n.norm() > 0)) n = (sb.x[t[1]] - sb.x[t[0]]).cross(sb.x[t[2]] - sb.x[t[0]]);
     n.normalize();
     const Vec3 to_node = x - best_point.point;
-    Real gap = n.dot(to_node);
-    if (a == b) {
-      // Within one body both sides of a face are "outside" somewhere: the pair keeps the side
-      // it had at the step's start.
-      const Vec3 y_dot = w[0] * sb.x_dot[t[0]] + w[1] * sb.x_dot[t[1]] + w[2] * sb.x_dot[t[2]];
-      const Real before = n.dot(to_node - dt * (sa.x_dot[node] - y_dot));
-      if (before < 0) {
-        n = -n;
-        gap = -gap;
-      }
-    }
+    const Real gap = n.dot(to_node);
     if (gap < -options.max_depth) continue;
     if (gap >= 0 && std::sqrt(best) >= options.margin) continue;
     BodyContact c;
@@ -358,7 +305,6 @@ void pair_nodes(const Model& model, BodyCollisionWorkspace& cws,
     make_basis(n, c.basis);
     cws.contacts.push_back(c);
     ++stats.contacts;
-    if (a == b) ++stats.self_contacts;
     if (gap < 0) {
       ++stats.penetrating;
       stats.max_penetration = std::max(stats.max_penetration, -gap);
@@ -440,52 +386,47 @@ void project_to_mid_plane(const Bodies& all, const BodyCollisionOptions& options
 
 // Back to q and v: local nodes through q_d and d-dot, then the mean-axis split; rigid and global
 // bodies through c and nu.
+void write_back_body(const Model& model, int b, State& state, Workspace& ws,
+                     BodyCollisionWorkspace& cws) {
+  Scratch& s = cws.bodies[b];
+  const BodyModel& body = model.bodies[b];
+  BodyWorkspace& bw = ws.bodies[b];
+  auto q = state.q.segment(body.q_offset, body.q_size);
+  auto v = state.v.segment(body.v_offset, body.v_size);
+  const Mat3 Rt = bw.R.transpose();
+  if (body.has_local) {
+    const int d_q = 7 + body.n_s, d_v = 6 + body.n_s;
+    const Vec3 omega = v.segment<3>(3);
+    for (int i = 0; i < body.n_nodes(); ++i) {
+      // x-dot = R (V + omega x p + p-dot) (3.4): a node moved by dp would gain omega x dp, so
+      // its d-dot loses it and the velocity is the one the impulses left.
+      const Vec3 dp = Rt * (s.x[i] - s.x0[i]);
+      q.segment<3>(d_q + 3 * i) += dp;
+      v.segment<3>(d_v + 3 * i) += Rt * (s.x_dot[i] - s.x_dot0[i]) - omega.cross(dp);
+    }
+    recenter_displacements(body, q, v);
+    compute_body_kinematics(body, q, v, bw, false);
+    factor_generalized_mass(body, q, bw);
+    resplit_velocities(body, q, v, bw);
+  } else {
+    q.segment<3>(0) += s.shift;
+    v.segment<3>(0) = bw.R * s.nu.segment<3>(0);
+    v.segment(3, body.n_generalized() - 3) = s.nu.tail(body.n_generalized() - 3);
+  }
+  compute_body_kinematics(body, q, v, bw, false);
+}
+
 void write_back(const Model& model, State& state, Workspace& ws, BodyCollisionWorkspace& cws) {
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
-    Scratch& s = cws.bodies[b];
-    if (!s.touched) continue;
-    const BodyModel& body = model.bodies[b];
-    BodyWorkspace& bw = ws.bodies[b];
-    auto q = state.q.segment(body.q_offset, body.q_size);
-    auto v = state.v.segment(body.v_offset, body.v_size);
-    const Mat3 Rt = bw.R.transpose();
-    if (body.has_local) {
-      const int d_q = 7 + body.n_s, d_v = 6 + body.n_s;
-      const Vec3 omega = v.segment<3>(3);
-      for (int i = 0; i < body.n_nodes(); ++i) {
-        // x-dot = R (V + omega x p + p-dot) (3.4): a node moved by dp would gain omega x dp, so
-        // its d-dot loses it and the velocity is the one the impulses left.
-        const Vec3 dp = Rt * (s.x[i] - s.x0[i]);
-        q.segment<3>(d_q + 3 * i) += dp;
-        v.segment<3>(d_v + 3 * i) += Rt * (s.x_dot[i] - s.x_dot0[i]) - omega.cross(dp);
-      }
-      recenter_displacements(body, q, v);
-      compute_body_kinematics(body, q, v, bw, false);
-      factor_generalized_mass(body, q, bw);
-      resplit_velocities(body, q, v, bw);
-    } else {
-      q.segment<3>(0) += s.shift;
-      v.segment<3>(0) = bw.R * s.nu.segment<3>(0);
-      v.segment(3, body.n_generalized() - 3) = s.nu.tail(body.n_generalized() - 3);
-    }
-    compute_body_kinematics(body, q, v, bw, false);
+    if (cws.bodies[b].touched) write_back_body(model, static_cast<int>(b), state, ws, cws);
   }
 }
 
-}  // namespace
-
-BodyCollisionStats resolve_body_collisions(const Model& model, State& state, Workspace& ws,
-                                           BodyCollisionWorkspace& cws,
-                                           const BodyCollisionOptions& options) {
-  BodyCollisionStats stats;
-  const auto start = Clock::now();
+// Pairs of distinct bodies (steps 1-4 above).
+void resolve_between_bodies(const Model& model, State& state, Workspace& ws,
+                            BodyCollisionWorkspace& cws, const BodyCollisionOptions& options,
+                            Real dt, BodyCollisionStats& stats) {
   const int n_bodies = static_cast<int>(model.bodies.size());
-  bool any_self = false;
-  for (const BodyModel& body : model.bodies) any_self |= options.self_collision && body.has_local;
-  if (!options.enabled || n_bodies == 0 || (n_bodies < 2 && !any_self)) return stats;
-  size_workspace(model, cws);
-  const Real dt = ws.bodies[0].dt;
-
   auto t0 = Clock::now();
   cws.broadphase.reinserted = 0;
   for (int b = 0; b < n_bodies; ++b) {
@@ -510,16 +451,13 @@ BodyCollisionStats resolve_body_collisions(const Model& model, State& state, Wor
     update_surface_tree(b, s.x, body.tessellation.triangles, options.margin, cws.broadphase);
   }
   stats.reinserted_leaves = cws.broadphase.reinserted;
-  gather_candidates(model, cws, options, stats);
+  gather_candidates(model, cws, stats);
   stats.seconds_broadphase = seconds_since(t0);
 
   t0 = Clock::now();
-  pair_nodes(model, cws, options, dt, stats);
+  pair_nodes(model, cws, options, stats);
   stats.seconds_narrowphase = seconds_since(t0);
-  if (cws.contacts.empty()) {
-    stats.seconds = seconds_since(start);
-    return stats;
-  }
+  if (cws.contacts.empty()) return;
 
   t0 = Clock::now();
   Bodies all{model, ws, cws, std::vector<char>(model.bodies.size(), 0)};
@@ -551,8 +489,66 @@ BodyCollisionStats resolve_body_collisions(const Model& model, State& state, Wor
   stats.pressing = push.pressing;
   stats.push_impulse = push.impulse;
   stats.seconds_response = seconds_since(t0);
+}
+
+// Each local body with itself (collide/self_collision.h), on the state the pairs of bodies left.
+void resolve_within_bodies(const Model& model, State& state, Workspace& ws,
+                           BodyCollisionWorkspace& cws, const BodyCollisionOptions& options,
+                           Real dt, BodyCollisionStats& stats) {
+  const auto t0 = Clock::now();
+  SelfCollisionWorkspace& sws = cws.self;
+  size_self_collision_workspace(model, sws);
+  const bool recorded = sws.recorded && sws.recorded_time == state.time;
+  for (int b = 0; b < static_cast<int>(model.bodies.size()); ++b) {
+    const BodyModel& body = model.bodies[b];
+    if (!body.has_local) continue;
+    BodyWorkspace& bw = ws.bodies[b];
+    Scratch& s = cws.bodies[b];
+    compute_body_kinematics(body, state.q.segment(body.q_offset, body.q_size),
+                            state.v.segment(body.v_offset, body.v_size), bw, false);
+    s.x0 = bw.x;
+    s.x = bw.x;
+    s.x_dot0 = bw.x_dot;
+    s.x_dot = bw.x_dot;
+    s.touched = false;
+    std::vector<Vec3>& x_start = sws.x_start[b];
+    if (!recorded) {
+      // First order in dt, exact only for straight node paths: a fallback for callers that step
+      // without record_step_start.
+      for (int i = 0; i < body.n_nodes(); ++i) x_start[i] = s.x[i] - dt * s.x_dot[i];
+      ++stats.self.estimated_starts;
+    }
+    if (resolve_self_collisions(body, b, x_start, s.x, s.x_dot, dt, options, sws, stats.self)) {
+      s.touched = true;
+      write_back_body(model, b, state, ws, cws);
+    }
+  }
+  stats.seconds_self = seconds_since(t0);
+}
+
+}  // namespace
+
+BodyCollisionStats resolve_body_collisions(const Model& model, State& state, Workspace& ws,
+                                           BodyCollisionWorkspace& cws,
+                                           const BodyCollisionOptions& options) {
+  BodyCollisionStats stats;
+  const auto start = Clock::now();
+  const int n_bodies = static_cast<int>(model.bodies.size());
+  if (!options.enabled || n_bodies < 2) return stats;
+  size_workspace(model, cws);
+  resolve_between_bodies(model, state, ws, cws, options, ws.bodies[0].dt, stats);
   stats.seconds = seconds_since(start);
   return stats;
+}
+
+void resolve_body_self_collisions(const Model& model, State& state, Workspace& ws,
+                                  BodyCollisionWorkspace& cws, const BodyCollisionOptions& options,
+                                  BodyCollisionStats& stats) {
+  bool any_self = false;
+  for (const BodyModel& body : model.bodies) any_self |= options.self_collision && body.has_local;
+  if (!options.enabled || !any_self) return;
+  size_workspace(model, cws);
+  resolve_within_bodies(model, state, ws, cws, options, ws.bodies[0].dt, stats);
 }
 
 }  // namespace pbm

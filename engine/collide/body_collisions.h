@@ -3,20 +3,17 @@
 // Runs after integration, in the collision stage beside the obstacles' resolve_penetrations
 // (sec. 5.2.1). The book's steps, as implemented:
 //  1. Polygons that may touch: a Bullet btDbvt per body over its surface triangles, fattened by
-//     the margin (collide/surface_broadphase.h). Each candidate pair of triangles of two bodies,
-//     or of one body with itself (not sharing a node), is tested for intersection (Moller,
-//     collide/triangle_geometry.h; counted in the statistics) and marks its nodes.
+//     the margin (collide/surface_broadphase.h). Each candidate pair of triangles of two bodies
+//     is tested for intersection (Moller, collide/triangle_geometry.h; counted in the
+//     statistics) and marks its nodes.
 //  2. Node pairing: a marked node x of one body is paired with the closest point y = sum w_k x_k
 //     of the other body's candidate triangles (a weighted node of the other model: the book
 //     pairs node with node, which lets a coarse mesh slip nodes between nodes). Interpenetration
 //     is the sign of n . (x - y), n the other surface's outward normal at y (interpolated vertex
 //     normals). The book's test (distances to the model frame) holds only for star-shaped models
-//     and says nothing within one body. Within one body the side is the one the pair was on at
-//     the step's start (x - dt x-dot, y - dt y-dot), meant for a shell squeezed flat (inner
-//     faces meeting) and a fold (outer faces meeting) alike; triangles that hold the node or
-//     one of its ring neighbours are skipped. Not a guarantee: only node-face pairs are
-//     resolved (no edge-edge pairs), and a soft shell flattened under 8 g on the ground still
-//     crossed itself about as often as with self-collision off.
+//     and says nothing within one body: a body with itself is a stage of its own, after the pairs
+//     of bodies (collide/self_collision.h: proximity and continuous detection of node-face and
+//     edge-edge pairs over the step, impact zones as the fail-safe).
 //  3. Mid-plane projection: a penetrating pair is moved apart along n to the plane between its
 //     two points, each side by its share of the pair's inverse mass, so the mass centre does not
 //     move (equal masses: the book's mid-plane).
@@ -33,7 +30,9 @@
 // node). Rigid and global bodies act through their generalized coordinates: an impulse J at
 // y maps by sum w_k P_k^T R^T J through the k x k mass block (A^+), as for obstacles (5.2.1); their
 // position correction translates c alone (inverse mass 1 / M), without turning or reshaping
-// them. Self-collision needs q_d, so only local bodies collide with themselves.
+// them. Self-collision needs q_d, so only local bodies collide with themselves; it starts from
+// the node positions record_step_start stored at the step's start (collide/self_collision.h)
+// and runs after the obstacles (resolve_body_self_collisions).
 // Then the elastic push of step 4, (5.11) between the bodies' global surfaces, with
 // solver.body_elasticity as a (collide/body_push.h; 0: the pairs are inelastic only).
 #pragma once
@@ -42,6 +41,7 @@
 #include <vector>
 
 #include "collide/body_collision_options.h"
+#include "collide/self_collision.h"
 #include "collide/surface_broadphase.h"
 #include "core/types.h"
 #include "sim/model.h"
@@ -57,7 +57,6 @@ struct BodyCollisionStats {
   int intersecting_triangles = 0;  // of those, pairs whose triangles intersect (step 1)
   int node_tests = 0;              // node-triangle closest-point evaluations
   int contacts = 0;                // node pairs within the margin
-  int self_contacts = 0;           // of those, within one body
   int penetrating = 0;             // of those, interpenetrating before the projection
   Real max_penetration = 0;        // deepest interpenetration before the projection [m]
   Real max_penetration_after = 0;  // deepest left after it, over the contacts [m]
@@ -65,8 +64,10 @@ struct BodyCollisionStats {
   int pressing = 0;                // pairs pushed apart by (5.11) (collide/body_push.h)
   Real push_impulse = 0;           // sum of their impulses [N s]
   int reinserted_leaves = 0;       // btDbvt leaves that moved
+  SelfCollisionStats self;         // local bodies with themselves (collide/self_collision.h)
   double seconds_broadphase = 0, seconds_narrowphase = 0, seconds_response = 0;
-  double seconds = 0;  // whole call
+  double seconds_self = 0;  // the self-collision stage, write-back included
+  double seconds = 0;       // whole call
 };
 
 // One node paired with a point of another (or the same) body's triangle.
@@ -104,14 +105,26 @@ struct BodyCollisionWorkspace {
   std::vector<std::array<int, 2>> pairs;
   std::vector<Candidate> candidates;
   std::vector<BodyContact> contacts;
+  SelfCollisionWorkspace self;  // and x_start, written by record_step_start
 };
 
-// Detects and resolves the contacts between bodies (and within local bodies when enabled) at the
-// state the integrator produced: changes q and v of the bodies in contact (see above). Reads and
-// leaves ws.bodies[b] with the kinematics of the returned state for the bodies it changed. The
-// speculative bound uses the step ws.bodies[0].dt (0: contacts act only once touching).
+// Detects and resolves the contacts between bodies at the state the integrator produced: changes
+// q and v of the bodies in contact (see above). Reads and leaves ws.bodies[b] with the kinematics
+// of the returned state for the bodies it changed. The speculative bound uses the step
+// ws.bodies[0].dt (0: contacts act only once touching).
 BodyCollisionStats resolve_body_collisions(const Model& model, State& state, Workspace& ws,
                                            BodyCollisionWorkspace& cws,
                                            const BodyCollisionOptions& options);
+
+// Each local body with itself (collide/self_collision.h) when options.self_collision, into
+// stats.self and stats.seconds_self. The last word of the collision stage, after the obstacles:
+// the obstacles' projection is then part of the motion checked, so a shell pressed flat on the
+// ground is not pushed through itself by it (the price: an impulse may leave a node of the
+// bottom sheet slightly inside the ground until the next step's obstacle pass). Uses
+// cws.self.x_start when record_step_start was called for this step (advance_substep does, when
+// the model asks for self-collision), else x - dt x-dot.
+void resolve_body_self_collisions(const Model& model, State& state, Workspace& ws,
+                                  BodyCollisionWorkspace& cws, const BodyCollisionOptions& options,
+                                  BodyCollisionStats& stats);
 
 }  // namespace pbm

@@ -76,9 +76,10 @@ void resize_broadphase(const std::vector<int>& triangle_counts, SurfaceBroadphas
   }
 }
 
-void update_surface_tree(int body, const std::vector<Vec3>& x,
-                         const std::vector<std::array<int, 3>>& triangles, Real margin,
-                         SurfaceBroadphase& broadphase) {
+void update_swept_surface_tree(int body, const std::vector<Vec3>& x_start,
+                               const std::vector<Vec3>& x,
+                               const std::vector<std::array<int, 3>>& triangles, Real margin,
+                               SurfaceBroadphase& broadphase) {
   SurfaceBroadphase::Trees& t = *broadphase.trees;
   btDbvt& tree = *t.tree[body];
   std::vector<Box3>& boxes = broadphase.boxes[body];
@@ -87,7 +88,10 @@ void update_surface_tree(int body, const std::vector<Vec3>& x,
   const Vec3 fat = Vec3::Constant(margin);
   for (std::size_t k = 0; k < triangles.size(); ++k) {
     Box3 box;
-    for (int v : triangles[k]) box.add(x[v]);
+    for (int v : triangles[k]) {
+      box.add(x_start[v]);
+      box.add(x[v]);
+    }
     box.lo -= fat;
     box.hi += fat;
     boxes[k] = box;
@@ -107,6 +111,13 @@ void update_surface_tree(int body, const std::vector<Vec3>& x,
     }
     ++broadphase.reinserted;
   }
+}
+
+void update_surface_tree(int body, const std::vector<Vec3>& x,
+                         const std::vector<std::array<int, 3>>& triangles, Real margin,
+                         SurfaceBroadphase& broadphase) {
+  // A box over the same point twice is the box over it once, bit for bit.
+  update_swept_surface_tree(body, x, x, triangles, margin, broadphase);
 }
 
 void collect_triangle_pairs(int body_a, int body_b, SurfaceBroadphase& broadphase,

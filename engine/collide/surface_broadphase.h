@@ -56,6 +56,13 @@ void update_surface_tree(int body, const std::vector<Vec3>& x,
                          const std::vector<std::array<int, 3>>& triangles, Real margin,
                          SurfaceBroadphase& broadphase);
 
+// The same over boxes that cover each triangle at both x_start and x (its sweep over a step whose
+// nodes move on straight lines), for continuous collision detection (collide/self_collision.h).
+void update_swept_surface_tree(int body, const std::vector<Vec3>& x_start,
+                               const std::vector<Vec3>& x,
+                               const std::vector<std::array<int, 3>>& triangles, Real margin,
+                               SurfaceBroadphase& broadphase);
+
 // Appends the triangle pairs (ta of body_a, tb of body_b) whose current fattened boxes overlap,
 // sorted. body_a == body_b gives each unordered pair of distinct triangles once, ta < tb.
 void collect_triangle_pairs(int body_a, int body_b, SurfaceBroadphase& broadphase,

@@ -183,4 +183,42 @@ TrianglePoint closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3
   return out;
 }
 
+SegmentPoints closest_points_on_segments(const Vec3& p0, const Vec3& p1, const Vec3& q0,
+                                         const Vec3& q1) {
+  const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const Real a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  SegmentPoints out;
+  if (a <= 0 && e <= 0) {
+    out.on_p = p0;
+    out.on_q = q0;
+    return out;
+  }
+  Real s = 0, u = 0;
+  if (a <= 0) {
+    u = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    const Real c = d1.dot(r);
+    if (e <= 0) {
+      s = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      const Real b = d1.dot(d2);
+      const Real denominator = a * e - b * b;  // >= 0, 0 when parallel
+      s = denominator > 0 ? std::clamp((b * f - c * e) / denominator, 0.0, 1.0) : 0.0;
+      u = (b * s + f) / e;
+      if (u < 0) {
+        u = 0;
+        s = std::clamp(-c / a, 0.0, 1.0);
+      } else if (u > 1) {
+        u = 1;
+        s = std::clamp((b - c) / a, 0.0, 1.0);
+      }
+    }
+  }
+  out.s = s;
+  out.u = u;
+  out.on_p = p0 + s * d1;
+  out.on_q = q0 + u * d2;
+  return out;
+}
+
 }  // namespace pbm

@@ -11,6 +11,10 @@
 // closest_point_on_triangle: the point y = w0 a + w1 b + w2 c of the closed triangle nearest to p
 // (Voronoi regions of the vertices, edges and face), with w >= 0 and w0 + w1 + w2 = 1 exactly
 // (w0 is computed as 1 - w1 - w2).
+//
+// closest_points_on_segments: the parameters s, u in [0, 1] of the nearest points
+// p0 + s (p1 - p0) and q0 + u (q1 - q0) of two closed segments (Ericson, "Real-Time Collision
+// Detection", 5.1.9); parallel segments take the lowest s that attains the distance.
 #pragma once
 
 #include "core/types.h"
@@ -25,5 +29,12 @@ struct TrianglePoint {
   Vec3 weights = Vec3::Zero();  // barycentric, sum exactly 1
 };
 TrianglePoint closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
+struct SegmentPoints {
+  Real s = 0, u = 0;                              // along p0 -> p1 and q0 -> q1, in [0, 1]
+  Vec3 on_p = Vec3::Zero(), on_q = Vec3::Zero();  // the points, world
+};
+SegmentPoints closest_points_on_segments(const Vec3& p0, const Vec3& p1, const Vec3& q0,
+                                         const Vec3& q1);
 
 }  // namespace pbm

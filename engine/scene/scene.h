@@ -151,7 +151,7 @@ struct SolverDef {
   ConstraintSolverKind constraint_solver = ConstraintSolverKind::dense;
   // Collisions between bodies (sec. 5.2.2); parts joined by a constraint never collide.
   bool body_collisions = true;
-  bool self_collision = false;   // a local body with itself (folds); node-face pairs only
+  bool self_collision = false;   // a local body with itself (collide/self_collision.h)
   Real body_friction = 0.3;      // b_f of (5.13) between bodies, in [0, 1]
   Real body_elasticity = 0;      // a of (5.11) between bodies, >= 0; 0: inelastic impulses only
   Real collision_margin = 0.02;  // contact band [m], > 0

@@ -240,6 +240,8 @@ void init_workspace(const Model& model, const Inputs& inputs, Workspace& ws) {
 bool advance_substep(const Model& model, State& state, Real dt, Workspace& ws, int& evaluations) {
   auto t0 = Clock::now();
   for (BodyWorkspace& bw : ws.bodies) bw.dt = dt;
+  // Self-collision follows each node from where it is now (collide/self_collision.h).
+  record_step_start(model, state, dt, model.body_collisions, ws.body_collisions.self);
   IntegrationStats istats;
   bool ok = true;
   auto derivative_seconds = [&ws] {
@@ -274,9 +276,11 @@ bool advance_substep(const Model& model, State& state, Real dt, Workspace& ws, i
       v = ws.first_order_velocity.segment(body.v_offset, body.v_size);
     }
   }
-  // Bodies against bodies first (5.2.2), then obstacles (5.2.1), so that obstacles have the last
-  // word and no node is left inside one: where their tracks put them at the step's end, the time
-  // of the positions being resolved (the rest of the drive stays at the last evaluation's time).
+  // Bodies against bodies first (5.2.2), then obstacles (5.2.1), so that no node is left inside
+  // an obstacle by another body, then each local body with itself (its guarantee needs the
+  // obstacles' moves inside the checked motion; collide/body_collisions.h): obstacles where their
+  // tracks put them at the step's end, the time of the positions being resolved (the rest of the
+  // drive stays at the last evaluation's time).
   place_obstacles(model, state.time, ws.drive.obstacles);
   ws.body_collision_stats =
       resolve_body_collisions(model, state, ws, ws.body_collisions, model.body_collisions);
@@ -286,6 +290,8 @@ bool advance_substep(const Model& model, State& state, Real dt, Workspace& ws, i
     resolve_penetrations(ws.drive.obstacles, body, state.q.segment(body.q_offset, body.q_size),
                          state.v.segment(body.v_offset, body.v_size), ws.bodies[b]);
   }
+  resolve_body_self_collisions(model, state, ws, ws.body_collisions, model.body_collisions,
+                               ws.body_collision_stats);
   ws.stage_seconds[static_cast<int>(StepStage::collisions)] += seconds_since(t0);
   return ok && all_finite(state);
 }
