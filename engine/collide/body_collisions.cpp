@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "collide/body_push.h"
+#include "collide/contact_impulse.h"
 #include "collide/rigid_contact.h"
 #include "collide/triangle_geometry.h"
 #include "deform/body_dynamics.h"
@@ -330,20 +331,8 @@ void solve_impulses(const Bodies& all, const BodyCollisionOptions& options, Real
       }
       const Side a = side_a(c), b = side_b(c);
       const Vec3 u = c.basis.transpose() * (side_velocity(all, a) - side_velocity(all, b));
-      Vec3 j = c.impulse;
-      j[0] = std::max(0.0, j[0] - (u[0] + allowed) / c.inverse_mass[0]);
-      if (options.friction > 0) {
-        j[1] -= u[1] / c.inverse_mass[1];
-        j[2] -= u[2] / c.inverse_mass[2];
-        const Real jt = std::hypot(j[1], j[2]);
-        const Real limit = options.friction * j[0];  // (5.13)
-        if (jt > limit) {
-          j[1] *= limit / jt;
-          j[2] *= limit / jt;
-        }
-      } else {
-        j[1] = j[2] = 0;
-      }
+      const Vec3 j =
+          updated_contact_impulse(c.impulse, u, allowed, c.inverse_mass, options.friction);
       const Vec3 dj = j - c.impulse;
       if (dj.isZero(0)) continue;
       c.impulse = j;

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "collide/contact_impulse.h"
 #include "collide/continuous_collision.h"
 #include "collide/triangle_geometry.h"
 #include "sim/state.h"
@@ -195,20 +196,8 @@ void solve_proximity(const BodyModel& body, const std::vector<Vec3>& x_start, st
     for (int step = 0; step < m; ++step) {
       Pair& p = pairs[iteration % 2 == 0 ? step : m - 1 - step];
       const Vec3 u = p.basis.transpose() * relative_velocity(x_start, x, p.nodes, p.weights, dt);
-      Vec3 j = p.impulse;
-      j[0] = std::max(0.0, j[0] - (u[0] + p.allowed / dt) / p.inverse_mass[0]);
-      if (options.friction > 0) {
-        j[1] -= u[1] / p.inverse_mass[1];
-        j[2] -= u[2] / p.inverse_mass[2];
-        const Real jt = std::hypot(j[1], j[2]);
-        const Real limit = options.friction * j[0];  // (5.13)
-        if (jt > limit) {
-          j[1] *= limit / jt;
-          j[2] *= limit / jt;
-        }
-      } else {
-        j[1] = j[2] = 0;
-      }
+      const Vec3 j =
+          updated_contact_impulse(p.impulse, u, p.allowed / dt, p.inverse_mass, options.friction);
       const Vec3 dj = j - p.impulse;
       if (dj.isZero(0)) continue;
       p.impulse = j;
