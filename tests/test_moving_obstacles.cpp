@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "core/error.h"
@@ -70,6 +71,9 @@ TEST(MovingObstacles, BallRidesARisingPlane) {
   }
   // Measured: at every frame's end the impact of the last substep has set v_z to the plane's
   // exactly (error 0), the centre never below its resting height, the nodes 1e-9 m above.
+  std::printf(
+      "rising plane: worst |v_z - v| %.3g m/s after 0.3 s, worst sink %.3g m, end z %.4f m\n",
+      worst_velocity_error, worst_sink, sim.state.q[2]);
   EXPECT_LT(worst_velocity_error, 0.02);
   EXPECT_LT(worst_sink, 1e-6);
   EXPECT_GE(min_distance, 0.0);
@@ -99,6 +103,8 @@ TEST(MovingObstacles, BoxGivesARestingBallItsSpeed) {
   }
   // Measured: v = (1.0000, 0, 0) m/s, x = 1.235 m (the sampled sphere's nodes are met later
   // than its true surface).
+  std::printf("box hits a rigid ball: v = (%.4f, %.3g, %.3g) m/s, x = %.4f m\n", sim.state.v[0],
+              sim.state.v[1], sim.state.v[2], sim.state.q[0]);
   EXPECT_NEAR(sim.state.v[0], 1.0, 0.01);
   EXPECT_NEAR(sim.state.v[1], 0.0, 1e-6);
   EXPECT_NEAR(sim.state.v[2], 0.0, 1e-6);
@@ -115,6 +121,7 @@ TEST(MovingObstacles, BoxLaunchesADeformableBall) {
     ASSERT_TRUE(r.ok) << r.message;
   }
   const Real speed = sim.state.v[0];
+  std::printf("box hits a deformable ball: it leaves at %.4f m/s\n", speed);
   EXPECT_GT(speed, 0.95);
   EXPECT_LT(speed, 2.05);
   EXPECT_NEAR(sim.state.v[1], 0.0, 1e-3);
@@ -152,6 +159,10 @@ TEST(MovingObstacles, SlidingGroundDragsABallByFriction) {
   // Measured: never faster than beta_f g t; the centre at 0.388 m/s (a shell of lumped nodes,
   // I ~ 2/3 m r^2, rolls without slip at V / (1 + m r^2 / I) = 0.4 V), its contact point within
   // 0.006 m/s of the ground's; frictionless, it stays at rest (6e-30 m/s).
+  std::printf(
+      "sliding ground: ball centre %.4f m/s, contact slip %.4f m/s, worst excess over "
+      "beta_f g t %.3g m/s\n",
+      rough.centre_speed, rough.contact_slip, rough.worst_excess);
   EXPECT_LT(rough.worst_excess, 1e-3);
   EXPECT_GT(rough.centre_speed, 0.3);
   EXPECT_LT(rough.centre_speed, 0.5);
@@ -318,6 +329,10 @@ TEST(MovingObstacles, DragonflyIsSwattedAway) {
   const Real drift = (still.after - still.before).norm();
   // Measured: 3.11 m, almost all of it down (the paddle's direction), against 0.16 m of drift
   // without the paddle's motion (the wings' springs let go at 4.75 s).
+  std::printf(
+      "dragonfly: centre of mass moved %.3f m (z %.3f m) after the swat, %.3f m with the "
+      "paddle still\n",
+      moved.norm(), moved.z(), drift);
   EXPECT_GT(moved.norm(), 2.0);
   EXPECT_LT(moved.z(), -2.0);
   EXPECT_LT(drift, 0.4);
