@@ -4,8 +4,8 @@
 // collide/body_push.h). Checked here: no two balloon surfaces interpenetrate (beyond 1% of a
 // radius) in any frame, the four or six constraints hold to 1 mm once the swing is under way, and
 // the book's observation that with a third balloon in the middle the left one swings a shorter
-// distance past its rest spot. The effect is small here: 0.2155 m against 0.2217 m (2.8%; 1.3% to
-// 4% for a from 30 to 1000). Without the push (a = 0) the two runs agree to 0.2% (0.3245 m
+// distance past its rest spot. The effect is small here: 0.2119 m against 0.2179 m (2.8%; 1.4% at
+// a = 30, 2.7% at a = 1000). Without the push (a = 0) the two runs agree to 0.2% (0.3245 m
 // against 0.3251 m): the impulses on the touching nodes alone let the neighbour's skin dent
 // ~0.3 m before its frame moves, and nothing reaches a third balloon in time. Rigid balloons show
 // it more strongly (0.139 m against 0.186 m): the local balloons' membranes spring back after the
@@ -23,70 +23,19 @@
 #include "scene/scene_json.h"
 #include "scene_builders.h"
 #include "sim/snapshot.h"
+#include "snapshot_penetration.h"
 
 namespace pbm {
 namespace {
 
-using V3 = Eigen::Vector3d;
+using test::penetration_depth;
 
-V3 to_d(const Vec3f& v) {
-  return v.cast<double>();
-}
-
-// Closest distance from p to triangle abc (Ericson, Real-Time Collision Detection 5.1.5).
-double point_triangle_distance(const V3& p, const V3& a, const V3& b, const V3& c) {
-  const V3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return ap.norm();
-  const V3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return bp.norm();
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + d1 / (d1 - d3) * ab)).norm();
-  const V3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return cp.norm();
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + d2 / (d2 - d6) * ac)).norm();
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
-    return (p - (b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b))).norm();
-  }
-  const double denom = 1.0 / (va + vb + vc);
-  return (p - (a + ab * vb * denom + ac * vc * denom)).norm();
-}
-
-// Winding number of the closed surface around p (van Oosterom-Strackee solid angles / 4 pi):
-// 1 inside, 0 outside, whatever the surface's convexity (a dented balloon stays closed).
-double winding_number(const V3& p, const BodySnapshot& body) {
-  double sum = 0;
-  for (const auto& t : body.triangles) {
-    const V3 a = to_d(body.positions[t[0]]) - p, b = to_d(body.positions[t[1]]) - p,
-             c = to_d(body.positions[t[2]]) - p;
-    const double la = a.norm(), lb = b.norm(), lc = c.norm();
-    sum += 2 * std::atan2(a.dot(b.cross(c)),
-                          la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb);
-  }
-  return sum / (4 * std::numbers::pi);
-}
-
-// Deepest node of one balloon inside another: the node's distance to the other's surface [m].
+// Deepest node of one balloon inside another [m].
 double max_penetration(const std::vector<const BodySnapshot*>& balloons) {
   double worst = 0;
   for (const BodySnapshot* a : balloons) {
     for (const BodySnapshot* b : balloons) {
-      if (a == b) continue;
-      for (const Vec3f& xf : a->positions) {
-        const V3 x = to_d(xf);
-        if (winding_number(x, *b) < 0.5) continue;
-        double d = 1e300;
-        for (const auto& t : b->triangles) {
-          d = std::min(
-              d, point_triangle_distance(x, to_d(b->positions[t[0]]), to_d(b->positions[t[1]]),
-                                         to_d(b->positions[t[2]])));
-        }
-        worst = std::max(worst, d);
-      }
+      if (a != b) worst = std::max(worst, penetration_depth(*a, *b));
     }
   }
   return worst;

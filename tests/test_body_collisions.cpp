@@ -241,8 +241,8 @@ INSTANTIATE_TEST_SUITE_P(LevelPairs, FreeCollision,
 // head on in free space at 3 m/s. Without it only the touching nodes are stopped and the membranes
 // alone slow the frames behind them, so the skins dent by much of a radius; with it the dents'
 // force acts on the whole bodies. Every call still conserves linear momentum (equal and opposite
-// impulses, each through its body's mass block), does not raise the kinetic energy beyond (b)'s
-// bound (the push only stops approaches), and the collision loses energy; without the cap on the
+// impulses, each through its body's mass block), raises the kinetic energy by no more than the
+// slow recovery of the overlap allows, and the collision loses energy; without the cap on the
 // approach, an earlier version gained 11% here (45 -> 50 J).
 struct HeadOn {
   Real closest = 1e300;                      // least distance between the two centres [m]
@@ -300,8 +300,8 @@ TEST(BodyPush, SoftBallsMeetingHeadOnArePushedApartAsWholes) {
   // Radius 1: without the push the centres come within 1.3 m; with it they stay farther apart.
   EXPECT_GT(pushed.closest, inelastic.closest + 0.2);
   EXPECT_LT(pushed.worst_momentum, 1e-9);
-  // The parameter inertia's share, as in (b): 1e-5 with or without the push.
-  EXPECT_LE(pushed.worst_kinetic, 2e-4);
+  // The parameter inertia's share, as in (b), 1e-5, and the overlap's recovery at 5/s, 9e-4.
+  EXPECT_LE(pushed.worst_kinetic, 2e-3);
   EXPECT_LT(pushed.energy_after, pushed.energy_before);
   EXPECT_GE(pushed.relative_speed_after, 0);  // apart, not through each other
 }

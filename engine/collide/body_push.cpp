@@ -14,6 +14,8 @@ namespace {
 // Critical damping of each pair's spring (at most one step's worth, c dt <= m): the global
 // surfaces meet without a bounce, as the book's balloons collide "inelastically" (sec. 7.4).
 constexpr Real kPushDampingRatio = 1.0;
+// [1/s]: the fastest the push parts two overlapping global surfaces, per metre of overlap.
+constexpr Real kOverlapRecovery = 5.0;
 constexpr Real kInfinite = std::numeric_limits<Real>::infinity();
 constexpr Real kUnitPushWeight = 1.0;
 
@@ -148,12 +150,13 @@ BodyPushStats apply_body_push(const Model& model, State& state, Workspace& ws,
     const Real share = pair.stiffness / pair_stiffness[lo * n_bodies + hi];
     const Real mass = share / pair.mobility;
     const Real stiffness = std::min(pair.stiffness, mass * rate * rate);
-    if (!(pair.approach > 0)) continue;
+    // At most what stops the pair's approach in this step and then parts the global points at
+    // kOverlapRecovery times their overlap (see the header).
+    const Real target = pair.approach + kOverlapRecovery * (-pair.phi);
+    if (!(target > 0)) continue;
     const Real c_d = std::min(2 * kPushDampingRatio * std::sqrt(stiffness * mass), mass * rate);
     const Real f = stiffness * (-pair.phi) + c_d * pair.approach;
-    // At most what stops the pair's approach in this step: the push never drives the surfaces
-    // apart (see the header).
-    impulse[p] = std::min(dt * std::max(0.0, f), mass * pair.approach);
+    impulse[p] = std::min(dt * std::max(0.0, f), mass * target);
   }
   std::vector<char> changed(static_cast<std::size_t>(n_bodies), 0);
   auto apply = [&](int b, const int* nodes, const Real* weights, int count, const Vec3& J) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "collide/triangle_geometry.h"
 
@@ -72,6 +73,17 @@ bool farther_than(const Vec3& a, const Vec3& b, const Vec3& e, Real tolerance) {
   return std::abs(n.dot(e)) > tolerance * n.norm();
 }
 
+// At most 7 entries: an insertion sort (std::sort on a fixed-size array trips GCC 12's
+// -Warray-bounds when built with -fsanitize=thread).
+void insertion_sort(Real* v, int n) {
+  for (int i = 1; i < n; ++i) {
+    const Real x = v[i];
+    int j = i;
+    for (; j > 0 && v[j - 1] > x; --j) v[j] = v[j - 1];
+    v[j] = x;
+  }
+}
+
 }  // namespace
 
 int coplanarity_candidate_times(const std::array<Real, 4>& c, std::array<Real, 7>& times) {
@@ -93,7 +105,8 @@ int coplanarity_candidate_times(const std::array<Real, 4>& c, std::array<Real, 7
       if (q != 0) add_break(qc / q);
     }
   }
-  std::sort(breaks.begin() + 1, breaks.begin() + n_breaks);
+  // Two turning points at most after 0 (std::sort here trips GCC 12's -Warray-bounds under TSan).
+  if (n_breaks == 3 && breaks[2] < breaks[1]) std::swap(breaks[1], breaks[2]);
   int n = 0;
   auto add_time = [&](Real t) {
     if (n == 0 || times[n - 1] != t) times[n++] = t;
@@ -107,7 +120,7 @@ int coplanarity_candidate_times(const std::array<Real, 4>& c, std::array<Real, 7
     if (f_lo != 0 && f_hi != 0 && (f_lo < 0) != (f_hi < 0)) add_time(bisect(c, lo, hi));
   }
   add_time(1);
-  std::sort(times.begin(), times.begin() + n);
+  insertion_sort(times.data(), n);
   n = static_cast<int>(std::unique(times.begin(), times.begin() + n) - times.begin());
   return n;
 }
