@@ -424,12 +424,6 @@ TEST(ConstraintScenes, SnowmanAndDragonflyAssemble) {
   }
 }
 
-}  // namespace
-}  // namespace pbm
-
-namespace pbm {
-namespace {
-
 // The see-saw (6.10): two heavy balls land on a plank hinged to the world. Body collisions must
 // not translate a constrained part: the plank's centre stays at its pivot (it sank 0.8 m when
 // the mid-plane projection moved it).
@@ -488,12 +482,6 @@ TEST(ConstraintScenes, SeesawBallsDoNotGoThroughThePlank) {
   EXPECT_LT(deepest, 0.01);
   EXPECT_GT(lowest_centre, 0.0);
 }
-
-}  // namespace
-}  // namespace pbm
-
-namespace pbm {
-namespace {
 
 // The snowman (fig. 7.5) after assembly drops to the floor and hops along a path by timed
 // forces (keyframed gravity pulses: up for 0.12 s, with a sideways part). It must stay standing:
