@@ -42,7 +42,9 @@ json full_scene() {
     "camera": {"position": [0, -10, 3], "target": [0, 0, 1], "up": [0, 0, 2], "fov": 35},
     "solver": {"dt": 0.031, "integrator": "rk45", "tolerance": 1e-5, "fps": 24, "duration": 3,
                "contact_step_reduction": true, "contact_dt_factor": 0.5, "max_retries": 6,
-               "energy_growth_bound": 2, "constraint_alpha": 7, "constraint_solver": "sparse"},
+               "energy_growth_bound": 2, "constraint_alpha": 7, "constraint_solver": "sparse",
+               "body_collisions": false, "self_collision": true, "body_friction": 0.7,
+               "body_elasticity": 250, "collision_margin": 0.03},
     "bodies": [
       {"name": "jello", "level": "global", "order": "first",
        "shape": {"kind": "taper_bend", "q_s": {"a0": 2.0, "eps1": 0.5, "t1": 0.3},
@@ -96,6 +98,8 @@ TEST(SceneJson, FullSceneParsesWithValuesDefaultsAndNormalization) {
   EXPECT_EQ(s.solver.dt, 0.031);
   EXPECT_EQ(s.solver.integrator, IntegratorKind::rk45);
   EXPECT_EQ(s.solver.fps, 24);
+  EXPECT_EQ(s.solver.body_elasticity, 250);
+  EXPECT_EQ(s.solver.body_friction, 0.7);
   EXPECT_TRUE(s.solver.contact_step_reduction);
   EXPECT_EQ(s.solver.max_retries, 6);
   EXPECT_EQ(s.solver.energy_growth_bound, 2);
@@ -314,6 +318,11 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.solver.constraint_alpha, b.solver.constraint_alpha);
   EXPECT_EQ(a.solver.constraint_beta, b.solver.constraint_beta);
   EXPECT_EQ(a.solver.constraint_solver, b.solver.constraint_solver);
+  EXPECT_EQ(a.solver.body_collisions, b.solver.body_collisions);
+  EXPECT_EQ(a.solver.self_collision, b.solver.self_collision);
+  EXPECT_EQ(a.solver.body_friction, b.solver.body_friction);
+  EXPECT_EQ(a.solver.body_elasticity, b.solver.body_elasticity);
+  EXPECT_EQ(a.solver.collision_margin, b.solver.collision_margin);
   ASSERT_EQ(a.constraints.size(), b.constraints.size());
   for (std::size_t i = 0; i < a.constraints.size(); ++i) {
     const ConstraintDef& x = a.constraints[i];
@@ -466,6 +475,9 @@ TEST(SceneJsonErrors, DuplicateKeyNamesItsPath) {
 
 TEST(SceneJsonErrors, RangesNameTheField) {
   json j = full_scene();
+  j["solver"]["body_elasticity"] = -1;
+  expect_error(j, "solver.body_elasticity", "must be >= 0");
+  j = full_scene();
   j["bodies"][0]["material"].erase("nodal_mass");
   j["bodies"][0]["material"]["mass"] = -1;
   expect_error(j, "bodies[0].material.mass", "bodies[0].material.mass: must be > 0");
