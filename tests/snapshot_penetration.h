@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "collide/triangle_geometry.h"
 #include "sim/snapshot.h"
 
 namespace pbm::test {
@@ -16,27 +17,10 @@ inline V3 to_d(const Vec3f& v) {
   return v.cast<double>();
 }
 
-// Closest distance from p to triangle abc (Ericson, Real-Time Collision Detection 5.1.5).
+// Closest distance from p to triangle abc (the engine's closest point, unit-tested in
+// test_body_collisions' TriangleGeometry.ClosestPointRegions).
 inline double point_triangle_distance(const V3& p, const V3& a, const V3& b, const V3& c) {
-  const V3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return ap.norm();
-  const V3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return bp.norm();
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + d1 / (d1 - d3) * ab)).norm();
-  const V3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return cp.norm();
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + d2 / (d2 - d6) * ac)).norm();
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
-    return (p - (b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b))).norm();
-  }
-  const double denom = 1.0 / (va + vb + vc);
-  return (p - (a + ab * vb * denom + ac * vc * denom)).norm();
+  return (p - closest_point_on_triangle(p, a, b, c).point).norm();
 }
 
 // Winding number of the closed surface around p (van Oosterom-Strackee solid angles / 4 pi):
