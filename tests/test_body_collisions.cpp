@@ -24,7 +24,7 @@ struct Stepper {
     int evaluations = 0;
     ok = advance_substep(sim.model, sim.state, sim.model.solver.dt, sim.ws, evaluations) && ok;
     const BodyCollisionStats stats =
-        resolve_body_collisions(sim.model, sim.state, sim.ws, cws, options);
+        resolve_body_collisions(collision_model(), bodies(), sim.model.solver.dt, cws);
     for (std::size_t b = 0; b < sim.model.bodies.size(); ++b) {
       const BodyModel& body = sim.model.bodies[b];
       resolve_penetrations(sim.model.obstacles, body,
@@ -43,6 +43,14 @@ struct Stepper {
     }
   }
   Vec3 position(int b) const { return sim.state.q.segment<3>(sim.model.bodies[b].q_offset); }
+  BodyCollisionModel collision_model() const {
+    BodyCollisionModel m = sim.model.body_collisions;
+    m.options = options;
+    return m;
+  }
+  BodySet bodies() {
+    return {sim.model.bodies, sim.ws.bodies, sim.state.q, sim.state.v, sim.state.time};
+  }
   test::Simulation sim;
   BodyCollisionWorkspace cws;
   BodyCollisionOptions options;
@@ -175,7 +183,8 @@ CollisionCall advance_and_collide(Stepper& s) {
   int evaluations = 0;
   call.ok = advance_substep(s.sim.model, s.sim.state, s.sim.model.solver.dt, s.sim.ws, evaluations);
   call.before = totals(s);
-  call.stats = resolve_body_collisions(s.sim.model, s.sim.state, s.sim.ws, s.cws, s.options);
+  call.stats =
+      resolve_body_collisions(s.collision_model(), s.bodies(), s.sim.model.solver.dt, s.cws);
   call.after = totals(s);
   return call;
 }

@@ -141,16 +141,19 @@ TEST(Constraints, JacobianMatchesFiniteDifferences) {
   }();
   for (const PointConstraintModel& c : sim.model.constraints.points) {
     kinematics(q, v);
-    const Vec3 velocity = constraint_end_velocity(c.ends[0], bw, sim.model, v);
+    const Vec3 velocity =
+        constraint_end_velocity(c.ends[0], bw, {sim.model.constraints, sim.model.bodies}, v);
     MatX G(body.n_generalized(), 3);
     constraint_end_jacobian_transpose(c.ends[0], body, bw[0], G);
     const Vec3 from_G = G.transpose() * nu_g;
     const Real h = 1e-6;
     VecX qp = q + h * q_dot, qm = q - h * q_dot;
     kinematics(qp, v);
-    const Vec3 xp = constraint_end_position(c.ends[0], bw, sim.model, qp);
+    const Vec3 xp =
+        constraint_end_position(c.ends[0], bw, {sim.model.constraints, sim.model.bodies}, qp);
     kinematics(qm, v);
-    const Vec3 xm = constraint_end_position(c.ends[0], bw, sim.model, qm);
+    const Vec3 xm =
+        constraint_end_position(c.ends[0], bw, {sim.model.constraints, sim.model.bodies}, qm);
     const Vec3 fd = (xp - xm) / (2 * h);
     std::printf("end %s: |L q-dot - finite difference| = %.3g, |G^T nu - L q-dot| = %.3g\n",
                 c.ends[0].node >= 0 ? "node" : "point", (velocity - fd).norm(),

@@ -265,7 +265,7 @@ TEST(SelfCollision, ImpulsesConserveTheBodysLinearMomentum) {
   sim.ws.bodies[0].dt = sim.model.solver.dt;
   fling_right_half(sim);
   BodyCollisionWorkspace cws;
-  BodyCollisionOptions options = sim.model.body_collisions;
+  BodyCollisionOptions options = sim.model.body_collisions.options;
   options.self_collision = true;
   const BodyModel& body = sim.model.bodies[0];
   auto momentum = [&](Real& scale) {
@@ -283,13 +283,15 @@ TEST(SelfCollision, ImpulsesConserveTheBodysLinearMomentum) {
   Real worst = 0;
   int calls_with_impulses = 0;
   for (int k = 0; k < 500; ++k) {
-    record_step_start(sim.model, sim.state, sim.model.solver.dt, options, cws.self);
+    record_step_start(sim.model.bodies, sim.state.q, sim.state.v, sim.state.time,
+                      sim.model.solver.dt, options, cws.self);
     int evaluations = 0;
     ASSERT_TRUE(advance_substep(sim.model, sim.state, sim.model.solver.dt, sim.ws, evaluations));
     Real scale = 0;
     const Vec3 before = momentum(scale);
     BodyCollisionStats stats;
-    resolve_body_self_collisions(sim.model, sim.state, sim.ws, cws, options, stats);
+    const BodySet bodies{sim.model.bodies, sim.ws.bodies, sim.state.q, sim.state.v, sim.state.time};
+    resolve_body_self_collisions(options, bodies, sim.model.solver.dt, cws, stats);
     ASSERT_EQ(stats.self.estimated_starts, 0);
     if (stats.self.proximity_pairs + stats.self.continuous_collisions == 0) continue;
     ++calls_with_impulses;

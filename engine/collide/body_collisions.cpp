@@ -9,8 +9,6 @@
 #include "collide/rigid_contact.h"
 #include "collide/triangle_geometry.h"
 #include "deform/body_dynamics.h"
-#include "sim/state.h"
-#include "sim/world.h"
 
 namespace pbm {
 namespace {
@@ -22,13 +20,12 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-bool sized_for(const Model& model, const BodyCollisionWorkspace& cws) {
-  if (cws.bodies.size() != model.bodies.size() ||
-      cws.broadphase.boxes.size() != model.bodies.size()) {
+bool sized_for(std::span<const BodyModel> bodies, const BodyCollisionWorkspace& cws) {
+  if (cws.bodies.size() != bodies.size() || cws.broadphase.boxes.size() != bodies.size()) {
     return false;
   }
-  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
-    const BodyModel& body = model.bodies[b];
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const BodyModel& body = bodies[b];
     if (static_cast<int>(cws.bodies[b].x0.size()) != body.n_nodes() ||
         cws.bodies[b].nu.size() != body.n_generalized() ||
         cws.broadphase.boxes[b].size() != body.tessellation.triangles.size()) {
@@ -38,12 +35,12 @@ bool sized_for(const Model& model, const BodyCollisionWorkspace& cws) {
   return true;
 }
 
-void size_workspace(const Model& model, BodyCollisionWorkspace& cws) {
-  if (sized_for(model, cws)) return;
+void size_workspace(std::span<const BodyModel> bodies, BodyCollisionWorkspace& cws) {
+  if (sized_for(bodies, cws)) return;
   std::vector<int> counts;
-  cws.bodies.assign(model.bodies.size(), Scratch{});
-  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
-    const BodyModel& body = model.bodies[b];
+  cws.bodies.assign(bodies.size(), Scratch{});
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const BodyModel& body = bodies[b];
     Scratch& s = cws.bodies[b];
     s.stiffness = node_contact_stiffness(body);
     const auto n = static_cast<std::size_t>(body.n_nodes());
@@ -90,17 +87,16 @@ struct Side {
 };
 
 struct Bodies {
-  const Model& model;
-  Workspace& ws;
+  const BodySet& set;
   BodyCollisionWorkspace& cws;
-  const BodyModel& body(const Side& side) const { return model.bodies[side.body]; }
-  // A rigid or global part held by a constraint (ch. 7) is not translated by the projection:
-  // the constraint force, computed with the dynamics, cannot follow a jump of c, and a see-saw
-  // knocked off its hinge by every landing ball would sink. The other side is moved the whole way.
-  // Per body, found once per call: the test sits inside the projection's passes.
-  std::vector<char> held;
-  bool pinned(const Side& side) const { return held[side.body] != 0; }
-  BodyWorkspace& bw(const Side& side) const { return ws.bodies[side.body]; }
+  // BodyCollisionModel::constrained: a rigid or global part held by a constraint (ch. 7) is not
+  // translated by the projection; the other side is moved the whole way.
+  const std::vector<char>& constrained;
+  const BodyModel& body(const Side& side) const { return set.models[side.body]; }
+  bool pinned(const Side& side) const {
+    return constrained[side.body] != 0 && !set.models[side.body].has_local;
+  }
+  BodyWorkspace& bw(const Side& side) const { return set.ws[side.body]; }
   Scratch& scratch(const Side& side) const { return cws.bodies[side.body]; }
 };
 
@@ -214,28 +210,19 @@ void make_basis(const Vec3& n, Mat3& basis) {
   basis.col(2) = n.cross(t1);
 }
 
-// Parts joined by a constraint (ch. 7) touch at the joint by design: colliding them would fight
-// the constraint force (Bullet's "disable collisions between linked bodies" does the same).
-bool joined(const Model& model, int a, int b) {
-  for (const PointConstraintModel& c : model.constraints.points) {
-    const int p = c.ends[0].body, q = c.ends[1].body;
-    if ((p == a && q == b) || (p == b && q == a)) return true;
-  }
-  return false;
-}
-
 // Steps 1 and 2: candidate triangle pairs, their intersection test, node candidates.
-void gather_candidates(const Model& model, BodyCollisionWorkspace& cws, BodyCollisionStats& stats) {
+void gather_candidates(const BodyCollisionModel& model, std::span<const BodyModel> bodies,
+                       BodyCollisionWorkspace& cws, BodyCollisionStats& stats) {
   cws.candidates.clear();
-  const int n_bodies = static_cast<int>(model.bodies.size());
+  const int n_bodies = static_cast<int>(bodies.size());
   for (int a = 0; a < n_bodies; ++a) {
     for (int b = a + 1; b < n_bodies; ++b) {
       if (!cws.broadphase.body_boxes[a].overlaps(cws.broadphase.body_boxes[b])) continue;
-      if (joined(model, a, b)) continue;
+      if (model.joined_pair(a, b)) continue;
       cws.pairs.clear();
       collect_triangle_pairs(a, b, cws.broadphase, cws.pairs);
-      const auto& tri_a = model.bodies[a].tessellation.triangles;
-      const auto& tri_b = model.bodies[b].tessellation.triangles;
+      const auto& tri_a = bodies[a].tessellation.triangles;
+      const auto& tri_b = bodies[b].tessellation.triangles;
       const Scratch& sa = cws.bodies[a];
       const Scratch& sb = cws.bodies[b];
       for (const std::array<int, 2>& p : cws.pairs) {
@@ -258,7 +245,7 @@ void gather_candidates(const Model& model, BodyCollisionWorkspace& cws, BodyColl
 
 // Step 2: each candidate node with its closest triangle point of the other body; the pairs
 // within the margin become contacts.
-void pair_nodes(const Model& model, BodyCollisionWorkspace& cws,
+void pair_nodes(std::span<const BodyModel> bodies, BodyCollisionWorkspace& cws,
                 const BodyCollisionOptions& options, BodyCollisionStats& stats) {
   cws.contacts.clear();
   const auto& cand = cws.candidates;
@@ -267,7 +254,7 @@ void pair_nodes(const Model& model, BodyCollisionWorkspace& cws,
     const int a = cand[first].body, node = cand[first].node, b = cand[first].other;
     const Scratch& sa = cws.bodies[a];
     const Scratch& sb = cws.bodies[b];
-    const auto& triangles = model.bodies[b].tessellation.triangles;
+    const auto& triangles = bodies[b].tessellation.triangles;
     const Vec3& x = sa.x[node];
     Real best = 1e300;
     int best_t = -1;
@@ -375,13 +362,12 @@ void project_to_mid_plane(const Bodies& all, const BodyCollisionOptions& options
 
 // Back to q and v: local nodes through q_d and d-dot, then the mean-axis split; rigid and global
 // bodies through c and nu.
-void write_back_body(const Model& model, int b, State& state, Workspace& ws,
-                     BodyCollisionWorkspace& cws) {
+void write_back_body(const BodySet& set, int b, BodyCollisionWorkspace& cws) {
   Scratch& s = cws.bodies[b];
-  const BodyModel& body = model.bodies[b];
-  BodyWorkspace& bw = ws.bodies[b];
-  auto q = state.q.segment(body.q_offset, body.q_size);
-  auto v = state.v.segment(body.v_offset, body.v_size);
+  const BodyModel& body = set.models[b];
+  BodyWorkspace& bw = set.ws[b];
+  auto q = body_q(body, set.q);
+  auto v = body_v(body, set.v);
   const Mat3 Rt = bw.R.transpose();
   if (body.has_local) {
     const int d_q = 7 + body.n_s, d_v = 6 + body.n_s;
@@ -405,25 +391,25 @@ void write_back_body(const Model& model, int b, State& state, Workspace& ws,
   compute_body_kinematics(body, q, v, bw, false);
 }
 
-void write_back(const Model& model, State& state, Workspace& ws, BodyCollisionWorkspace& cws) {
-  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
-    if (cws.bodies[b].touched) write_back_body(model, static_cast<int>(b), state, ws, cws);
+void write_back(const BodySet& set, BodyCollisionWorkspace& cws) {
+  for (int b = 0; b < set.size(); ++b) {
+    if (cws.bodies[b].touched) write_back_body(set, b, cws);
   }
 }
 
 // Pairs of distinct bodies (steps 1-4 above).
-void resolve_between_bodies(const Model& model, State& state, Workspace& ws,
-                            BodyCollisionWorkspace& cws, const BodyCollisionOptions& options,
-                            Real dt, BodyCollisionStats& stats) {
-  const int n_bodies = static_cast<int>(model.bodies.size());
+void resolve_between_bodies(const BodyCollisionModel& model, const BodySet& set,
+                            BodyCollisionWorkspace& cws, Real dt, BodyCollisionStats& stats) {
+  const BodyCollisionOptions& options = model.options;
+  const int n_bodies = set.size();
   auto t0 = Clock::now();
   cws.broadphase.reinserted = 0;
   for (int b = 0; b < n_bodies; ++b) {
-    const BodyModel& body = model.bodies[b];
-    BodyWorkspace& bw = ws.bodies[b];
+    const BodyModel& body = set.models[b];
+    BodyWorkspace& bw = set.ws[b];
     Scratch& s = cws.bodies[b];
-    const auto q = state.q.segment(body.q_offset, body.q_size);
-    const auto v = state.v.segment(body.v_offset, body.v_size);
+    const auto q = body_q(body, set.q);
+    const auto v = body_v(body, set.v);
     compute_body_kinematics(body, q, v, bw, false);
     s.x0 = bw.x;
     s.x = bw.x;
@@ -440,28 +426,21 @@ void resolve_between_bodies(const Model& model, State& state, Workspace& ws,
     update_surface_tree(b, s.x, body.tessellation.triangles, options.margin, cws.broadphase);
   }
   stats.reinserted_leaves = cws.broadphase.reinserted;
-  gather_candidates(model, cws, stats);
+  gather_candidates(model, set.models, cws, stats);
   stats.seconds_broadphase = seconds_since(t0);
 
   t0 = Clock::now();
-  pair_nodes(model, cws, options, stats);
+  pair_nodes(set.models, cws, options, stats);
   stats.seconds_narrowphase = seconds_since(t0);
   if (cws.contacts.empty()) return;
 
   t0 = Clock::now();
-  Bodies all{model, ws, cws, std::vector<char>(model.bodies.size(), 0)};
-  for (const PointConstraintModel& c : model.constraints.points) {
-    for (const ConstraintPoint& end : c.ends) {
-      if (end.body >= 0 && !model.bodies[end.body].has_local) all.held[end.body] = 1;
-    }
-  }
+  const Bodies all{set, cws, model.constrained};
   for (BodyContact& c : cws.contacts) {
     for (const int b : {c.body_a, c.body_b}) {
       Scratch& s = cws.bodies[b];
-      if (model.bodies[b].has_local || s.mass_factored) continue;
-      factor_generalized_mass(model.bodies[b],
-                              state.q.segment(model.bodies[b].q_offset, model.bodies[b].q_size),
-                              ws.bodies[b]);
+      if (set.models[b].has_local || s.mass_factored) continue;
+      factor_generalized_mass(set.models[b], body_q(set.models[b], set.q), set.ws[b]);
       s.mass_factored = true;
     }
     const Side a = side_a(c), b = side_b(c);
@@ -473,28 +452,26 @@ void resolve_between_bodies(const Model& model, State& state, Workspace& ws,
   }
   solve_impulses(all, options, dt, stats);
   project_to_mid_plane(all, options, stats);
-  write_back(model, state, ws, cws);
-  const BodyPushStats push = apply_body_push(model, state, ws, cws, options.elasticity, dt);
+  write_back(set, cws);
+  const BodyPushStats push = apply_body_push(set, cws, options.elasticity, dt);
   stats.pressing = push.pressing;
   stats.push_impulse = push.impulse;
   stats.seconds_response = seconds_since(t0);
 }
 
 // Each local body with itself (collide/self_collision.h), on the state the pairs of bodies left.
-void resolve_within_bodies(const Model& model, State& state, Workspace& ws,
-                           BodyCollisionWorkspace& cws, const BodyCollisionOptions& options,
-                           Real dt, BodyCollisionStats& stats) {
+void resolve_within_bodies(const BodyCollisionOptions& options, const BodySet& set,
+                           BodyCollisionWorkspace& cws, Real dt, BodyCollisionStats& stats) {
   const auto t0 = Clock::now();
   SelfCollisionWorkspace& sws = cws.self;
-  size_self_collision_workspace(model, sws);
-  const bool recorded = sws.recorded && sws.recorded_time == state.time;
-  for (int b = 0; b < static_cast<int>(model.bodies.size()); ++b) {
-    const BodyModel& body = model.bodies[b];
+  size_self_collision_workspace(set.models, sws);
+  const bool recorded = sws.recorded && sws.recorded_time == set.time;
+  for (int b = 0; b < set.size(); ++b) {
+    const BodyModel& body = set.models[b];
     if (!body.has_local) continue;
-    BodyWorkspace& bw = ws.bodies[b];
+    BodyWorkspace& bw = set.ws[b];
     Scratch& s = cws.bodies[b];
-    compute_body_kinematics(body, state.q.segment(body.q_offset, body.q_size),
-                            state.v.segment(body.v_offset, body.v_size), bw, false);
+    compute_body_kinematics(body, body_q(body, set.q), body_v(body, set.v), bw, false);
     s.x0 = bw.x;
     s.x = bw.x;
     s.x_dot0 = bw.x_dot;
@@ -509,7 +486,7 @@ void resolve_within_bodies(const Model& model, State& state, Workspace& ws,
     }
     if (resolve_self_collisions(body, b, x_start, s.x, s.x_dot, dt, options, sws, stats.self)) {
       s.touched = true;
-      write_back_body(model, b, state, ws, cws);
+      write_back_body(set, b, cws);
     }
   }
   stats.seconds_self = seconds_since(t0);
@@ -517,27 +494,24 @@ void resolve_within_bodies(const Model& model, State& state, Workspace& ws,
 
 }  // namespace
 
-BodyCollisionStats resolve_body_collisions(const Model& model, State& state, Workspace& ws,
-                                           BodyCollisionWorkspace& cws,
-                                           const BodyCollisionOptions& options) {
+BodyCollisionStats resolve_body_collisions(const BodyCollisionModel& model, const BodySet& set,
+                                           Real dt, BodyCollisionWorkspace& cws) {
   BodyCollisionStats stats;
   const auto start = Clock::now();
-  const int n_bodies = static_cast<int>(model.bodies.size());
-  if (!options.enabled || n_bodies < 2) return stats;
-  size_workspace(model, cws);
-  resolve_between_bodies(model, state, ws, cws, options, ws.bodies[0].dt, stats);
+  if (!model.options.enabled || set.size() < 2) return stats;
+  size_workspace(set.models, cws);
+  resolve_between_bodies(model, set, cws, dt, stats);
   stats.seconds = seconds_since(start);
   return stats;
 }
 
-void resolve_body_self_collisions(const Model& model, State& state, Workspace& ws,
-                                  BodyCollisionWorkspace& cws, const BodyCollisionOptions& options,
-                                  BodyCollisionStats& stats) {
+void resolve_body_self_collisions(const BodyCollisionOptions& options, const BodySet& set, Real dt,
+                                  BodyCollisionWorkspace& cws, BodyCollisionStats& stats) {
   bool any_self = false;
-  for (const BodyModel& body : model.bodies) any_self |= options.self_collision && body.has_local;
+  for (const BodyModel& body : set.models) any_self |= options.self_collision && body.has_local;
   if (!options.enabled || !any_self) return;
-  size_workspace(model, cws);
-  resolve_within_bodies(model, state, ws, cws, options, ws.bodies[0].dt, stats);
+  size_workspace(set.models, cws);
+  resolve_within_bodies(options, set, cws, dt, stats);
 }
 
 }  // namespace pbm

@@ -40,16 +40,13 @@
 #include <array>
 #include <vector>
 
-#include "collide/body_collision_options.h"
+#include "collide/body_collision_model.h"
 #include "collide/self_collision.h"
 #include "collide/surface_broadphase.h"
 #include "core/types.h"
-#include "sim/model.h"
+#include "deform/body_set.h"
 
 namespace pbm {
-
-struct State;
-struct Workspace;
 
 // Cost and outcome of one call.
 struct BodyCollisionStats {
@@ -108,23 +105,21 @@ struct BodyCollisionWorkspace {
   SelfCollisionWorkspace self;  // and x_start, written by record_step_start
 };
 
-// Detects and resolves the contacts between bodies at the state the integrator produced: changes
-// q and v of the bodies in contact (see above). Reads and leaves ws.bodies[b] with the kinematics
-// of the returned state for the bodies it changed. The speculative bound uses the step
-// ws.bodies[0].dt (0: contacts act only once touching).
-BodyCollisionStats resolve_body_collisions(const Model& model, State& state, Workspace& ws,
-                                           BodyCollisionWorkspace& cws,
-                                           const BodyCollisionOptions& options);
+// Detects and resolves the contacts between bodies at the state the integrator produced (the
+// step of length dt just taken): changes q and v of the bodies in contact (see above). Reads and
+// leaves bodies.ws with the kinematics of the returned state for the bodies it changed. The
+// speculative bound uses dt (0: contacts act only once touching).
+BodyCollisionStats resolve_body_collisions(const BodyCollisionModel& model, const BodySet& bodies,
+                                           Real dt, BodyCollisionWorkspace& cws);
 
 // Each local body with itself (collide/self_collision.h) when options.self_collision, into
 // stats.self and stats.seconds_self. The last word of the collision stage, after the obstacles:
 // the obstacles' projection is then part of the motion checked, so a shell pressed flat on the
 // ground is not pushed through itself by it (the price: an impulse may leave a node of the
 // bottom sheet slightly inside the ground until the next step's obstacle pass). Uses
-// cws.self.x_start when record_step_start was called for this step (advance_substep does, when
-// the model asks for self-collision), else x - dt x-dot.
-void resolve_body_self_collisions(const Model& model, State& state, Workspace& ws,
-                                  BodyCollisionWorkspace& cws, const BodyCollisionOptions& options,
-                                  BodyCollisionStats& stats);
+// cws.self.x_start when record_step_start was called for this step (the step does, when the
+// model asks for self-collision), else x - dt x-dot.
+void resolve_body_self_collisions(const BodyCollisionOptions& options, const BodySet& bodies,
+                                  Real dt, BodyCollisionWorkspace& cws, BodyCollisionStats& stats);
 
 }  // namespace pbm

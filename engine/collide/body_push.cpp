@@ -5,8 +5,6 @@
 #include <limits>
 
 #include "deform/body_dynamics.h"
-#include "sim/state.h"
-#include "sim/world.h"
 
 namespace pbm {
 namespace {
@@ -65,35 +63,31 @@ std::vector<Real> node_contact_stiffness(const BodyModel& body) {
   return k;
 }
 
-BodyPushStats apply_body_push(const Model& model, State& state, Workspace& ws,
-                              BodyCollisionWorkspace& cws, Real elasticity, Real dt) {
+BodyPushStats apply_body_push(const BodySet& set, BodyCollisionWorkspace& cws, Real elasticity,
+                              Real dt) {
   BodyPushStats stats;
   if (!(elasticity > 0) || !(dt > 0) || cws.contacts.empty()) return stats;
-  const int n_bodies = static_cast<int>(model.bodies.size());
-  auto slice_q = [&](int b) {
-    return state.q.segment(model.bodies[b].q_offset, model.bodies[b].q_size);
-  };
-  auto slice_v = [&](int b) {
-    return state.v.segment(model.bodies[b].v_offset, model.bodies[b].v_size);
-  };
-  auto moves = [&](int b) { return model.bodies[b].order == DynamicsOrder::second; };
+  const int n_bodies = static_cast<int>(set.models.size());
+  auto slice_q = [&](int b) { return set.q.segment(set.models[b].q_offset, set.models[b].q_size); };
+  auto slice_v = [&](int b) { return set.v.segment(set.models[b].v_offset, set.models[b].v_size); };
+  auto moves = [&](int b) { return set.models[b].order == DynamicsOrder::second; };
   std::vector<PushPair> pairs;
   std::vector<Real> pair_stiffness(static_cast<std::size_t>(n_bodies * n_bodies), 0.0);
   VecX g, a_inv_g;
   std::vector<char> factored(static_cast<std::size_t>(n_bodies), 0);
   auto ensure_mass = [&](int b) {
     if (factored[b]) return;
-    factor_generalized_mass(model.bodies[b], slice_q(b), ws.bodies[b]);
+    factor_generalized_mass(set.models[b], slice_q(b), set.ws[b]);
     factored[b] = 1;
   };
   for (int index = 0; index < static_cast<int>(cws.contacts.size()); ++index) {
     const BodyContact& c = cws.contacts[index];
-    const BodyModel& A = model.bodies[c.body_a];
-    const BodyModel& B = model.bodies[c.body_b];
+    const BodyModel& A = set.models[c.body_a];
+    const BodyModel& B = set.models[c.body_b];
     if (c.body_a == c.body_b || (!A.has_local && !B.has_local)) continue;
     if (!moves(c.body_a) && !moves(c.body_b)) continue;
-    const BodyWorkspace& bwa = ws.bodies[c.body_a];
-    const BodyWorkspace& bwb = ws.bodies[c.body_b];
+    const BodyWorkspace& bwa = set.ws[c.body_a];
+    const BodyWorkspace& bwb = set.ws[c.body_b];
     const GlobalPoint pa = global_point(A, bwa, slice_q(c.body_a), slice_v(c.body_a), c.node_a);
     GlobalPoint pb;
     for (int k = 0; k < 3; ++k) {
@@ -123,13 +117,13 @@ BodyPushStats apply_body_push(const Model& model, State& state, Workspace& ws,
     if (moves(c.body_a)) {
       ensure_mass(c.body_a);
       push_direction(A, bwa, &c.node_a, &kUnitPushWeight, 1, n, g);
-      solve_generalized_mass(ws.bodies[c.body_a], g, a_inv_g);
+      solve_generalized_mass(set.ws[c.body_a], g, a_inv_g);
       p.mobility += g.dot(a_inv_g);
     }
     if (moves(c.body_b)) {
       ensure_mass(c.body_b);
       push_direction(B, bwb, c.nodes_b.data(), c.w_b.data(), 3, n, g);
-      solve_generalized_mass(ws.bodies[c.body_b], g, a_inv_g);
+      solve_generalized_mass(set.ws[c.body_b], g, a_inv_g);
       p.mobility += g.dot(a_inv_g);
     }
     if (!(p.mobility > 0)) continue;
@@ -161,8 +155,8 @@ BodyPushStats apply_body_push(const Model& model, State& state, Workspace& ws,
   std::vector<char> changed(static_cast<std::size_t>(n_bodies), 0);
   auto apply = [&](int b, const int* nodes, const Real* weights, int count, const Vec3& J) {
     if (!moves(b)) return;
-    const BodyModel& body = model.bodies[b];
-    BodyWorkspace& bw = ws.bodies[b];
+    const BodyModel& body = set.models[b];
+    BodyWorkspace& bw = set.ws[b];
     push_direction(body, bw, nodes, weights, count, J, g);
     solve_generalized_mass(bw, g, a_inv_g);
     auto v = slice_v(b);
@@ -180,7 +174,7 @@ BodyPushStats apply_body_push(const Model& model, State& state, Workspace& ws,
   }
   for (int b = 0; b < n_bodies; ++b) {
     if (changed[b])
-      compute_body_kinematics(model.bodies[b], slice_q(b), slice_v(b), ws.bodies[b], false);
+      compute_body_kinematics(set.models[b], slice_q(b), slice_v(b), set.ws[b], false);
   }
   return stats;
 }

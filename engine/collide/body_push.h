@@ -45,9 +45,9 @@ struct BodyPushStats {
 // of the sample's stiffness times its weight at the node [N/m]. Empty for other bodies.
 std::vector<Real> node_contact_stiffness(const BodyModel& body);
 
-// Applies the push of `elasticity` (a of 5.11) over cws.contacts to state.v. Needs ws.bodies with
-// the kinematics of state (as resolve_body_collisions leaves them) and cws.bodies[b].stiffness.
-BodyPushStats apply_body_push(const Model& model, State& state, Workspace& ws,
-                              BodyCollisionWorkspace& cws, Real elasticity, Real dt);
+// Applies the push of `elasticity` (a of 5.11) over cws.contacts to set.v. Needs set.ws with the
+// kinematics of the state (as resolve_body_collisions leaves them) and cws.bodies[b].stiffness.
+BodyPushStats apply_body_push(const BodySet& set, BodyCollisionWorkspace& cws, Real elasticity,
+                              Real dt);
 
 }  // namespace pbm

@@ -1,8 +1,8 @@
 // Rigid obstacles (sec. 5.2.1): signed distance and outward normal of a point.
 #pragma once
 
+#include "collide/obstacle_model.h"
 #include "core/types.h"
-#include "sim/model.h"
 
 namespace pbm {
 

@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "collide/obstacle.h"
+#include "core/quaternion.h"
 #include "deform/reference_shape.h"
-#include "sim/state.h"
 
 namespace pbm {
 namespace {

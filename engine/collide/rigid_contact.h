@@ -32,13 +32,10 @@
 
 #include <span>
 
+#include "collide/obstacle_model.h"
 #include "deform/body_dynamics.h"
-#include "sim/model.h"
 
 namespace pbm {
-
-// The obstacles placed at one time (Drive::obstacles, or Model::obstacles where none moves).
-using Obstacles = std::span<const ObstacleModel>;
 
 // Nodes within this distance of a surface count as touching (after projection they sit on it).
 inline constexpr Real kContactBand = 1e-6;

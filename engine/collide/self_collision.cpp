@@ -7,7 +7,6 @@
 #include "collide/contact_impulse.h"
 #include "collide/continuous_collision.h"
 #include "collide/triangle_geometry.h"
-#include "sim/state.h"
 
 namespace pbm {
 namespace {
@@ -311,19 +310,18 @@ int resolve_impact_zones(const BodyModel& body, int b, const std::vector<Vec3>& 
 
 }  // namespace
 
-void size_self_collision_workspace(const Model& model, SelfCollisionWorkspace& sws) {
+void size_self_collision_workspace(std::span<const BodyModel> bodies, SelfCollisionWorkspace& sws) {
   // A copied workspace has empty trees and boxes (SurfaceBroadphase): rebuild.
-  bool fits = sws.topology.size() == model.bodies.size() &&
-              sws.broadphase.boxes.size() == model.bodies.size();
-  for (std::size_t b = 0; fits && b < model.bodies.size(); ++b) {
-    const BodyModel& body = model.bodies[b];
+  bool fits = sws.topology.size() == bodies.size() && sws.broadphase.boxes.size() == bodies.size();
+  for (std::size_t b = 0; fits && b < bodies.size(); ++b) {
+    const BodyModel& body = bodies[b];
     const std::size_t triangles = body.has_local ? body.tessellation.triangles.size() : 0;
     fits = sws.broadphase.boxes[b].size() == triangles;
     if (!fits) break;
     fits = sws.x_start[b].size() == (body.has_local ? static_cast<std::size_t>(body.n_nodes()) : 0);
   }
   if (fits) return;
-  const std::size_t n_bodies = model.bodies.size();
+  const std::size_t n_bodies = bodies.size();
   sws.topology.assign(n_bodies, {});
   sws.x_start.assign(n_bodies, {});
   sws.start_kinematics.assign(n_bodies, BodyWorkspace{});
@@ -331,7 +329,7 @@ void size_self_collision_workspace(const Model& model, SelfCollisionWorkspace& s
   std::vector<int> counts(n_bodies, 0);
   int largest = 0;
   for (std::size_t b = 0; b < n_bodies; ++b) {
-    const BodyModel& body = model.bodies[b];
+    const BodyModel& body = bodies[b];
     if (!body.has_local) continue;
     sws.topology[b] = build_topology(body);
     sws.x_start[b].assign(static_cast<std::size_t>(body.n_nodes()), Vec3::Zero());
@@ -348,20 +346,19 @@ void size_self_collision_workspace(const Model& model, SelfCollisionWorkspace& s
   sws.zone_count.assign(n, 0);
 }
 
-void record_step_start(const Model& model, const State& state, Real dt,
-                       const BodyCollisionOptions& options, SelfCollisionWorkspace& sws) {
+void record_step_start(std::span<const BodyModel> bodies, const VecX& q, const VecX& v, Real time,
+                       Real dt, const BodyCollisionOptions& options, SelfCollisionWorkspace& sws) {
   if (!options.enabled || !options.self_collision) return;
-  size_self_collision_workspace(model, sws);
-  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
-    const BodyModel& body = model.bodies[b];
+  size_self_collision_workspace(bodies, sws);
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const BodyModel& body = bodies[b];
     if (!body.has_local) continue;
     BodyWorkspace& bw = sws.start_kinematics[b];
-    compute_body_kinematics(body, state.q.segment(body.q_offset, body.q_size),
-                            state.v.segment(body.v_offset, body.v_size), bw, false);
+    compute_body_kinematics(body, body_q(body, q), body_v(body, v), bw, false);
     sws.x_start[b] = bw.x;
   }
   // advance_substep adds dt to the time the same way: equal bits mark the step recorded here.
-  sws.recorded_time = state.time + dt;
+  sws.recorded_time = time + dt;
   sws.recorded = true;
 }
 

@@ -43,15 +43,14 @@
 #include <array>
 #include <vector>
 
-#include "collide/body_collision_options.h"
+#include <span>
+
+#include "collide/body_collision_model.h"
 #include "collide/surface_broadphase.h"
 #include "core/types.h"
 #include "deform/body_dynamics.h"
-#include "sim/model.h"
 
 namespace pbm {
-
-struct State;
 
 // Cost and outcome of the self-collision stage of one call, summed over the bodies.
 struct SelfCollisionStats {
@@ -103,13 +102,14 @@ struct SelfCollisionWorkspace {
   std::vector<int> zone_count;  // nodes per zone root
 };
 
-// Sizes the workspace for the model (a no-op when it already fits).
-void size_self_collision_workspace(const Model& model, SelfCollisionWorkspace& sws);
+// Sizes the workspace for the bodies (a no-op when it already fits).
+void size_self_collision_workspace(std::span<const BodyModel> bodies, SelfCollisionWorkspace& sws);
 
-// Node positions of every local body at the state, the start of the step of length dt about to
-// be taken, into sws.x_start. Only when options.enabled and options.self_collision.
-void record_step_start(const Model& model, const State& state, Real dt,
-                       const BodyCollisionOptions& options, SelfCollisionWorkspace& sws);
+// Node positions of every local body at the state (q, v at `time`), the start of the step of
+// length dt about to be taken, into sws.x_start. Only when options.enabled and
+// options.self_collision.
+void record_step_start(std::span<const BodyModel> bodies, const VecX& q, const VecX& v, Real time,
+                       Real dt, const BodyCollisionOptions& options, SelfCollisionWorkspace& sws);
 
 // Stages 1-4 for local body b: x (n_nodes, world [m]) and x_dot (world [m/s]) at the step's end
 // are corrected in place; x_start is the step's start (n_nodes). Returns whether a node moved.

@@ -28,32 +28,32 @@ void for_each_shared_body_pair(const ConstraintWorkspace& cw, Visit visit) {
 
 }  // namespace
 
-void init_constraint_workspace(const Model& model, ConstraintWorkspace& cw) {
-  const std::vector<PointConstraintModel>& points = model.constraints.points;
+void init_constraint_workspace(const ConstrainedSystem& system, ConstraintWorkspace& cw) {
+  const std::vector<PointConstraintModel>& points = system.constraints.points;
   const int m = static_cast<int>(points.size());
   cw.n_constraints = m;
-  cw.sparse = model.constraints.solver == ConstraintSolverKind::sparse;
-  cw.body_ends.assign(model.bodies.size(), {});
+  cw.sparse = system.constraints.solver == ConstraintSolverKind::sparse;
+  cw.body_ends.assign(system.bodies.size(), {});
   cw.G.assign(m, {});
   cw.Y.assign(m, {});
   int k_max = 0;
-  for (const BodyModel& body : model.bodies) k_max = std::max(k_max, body.n_generalized());
+  for (const BodyModel& body : system.bodies) k_max = std::max(k_max, body.n_generalized());
   for (int l = 0; l < m; ++l) {
     for (int e = 0; e < 2; ++e) {
       const int b = points[l].ends[e].body;
       if (b < 0) continue;
-      const int k = model.bodies[b].n_generalized();
+      const int k = system.bodies[b].n_generalized();
       cw.G[l][e].setZero(k, 3);
       cw.Y[l][e].setZero(k, 3);
       cw.body_ends[b].push_back({l, e});
     }
   }
-  cw.column.resize(model.bodies.size());
-  cw.response.resize(model.bodies.size());
-  cw.hinge_force.resize(model.bodies.size());
-  cw.hinge_delta.resize(model.bodies.size());
-  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
-    const int k = model.bodies[b].n_generalized();
+  cw.column.resize(system.bodies.size());
+  cw.response.resize(system.bodies.size());
+  cw.hinge_force.resize(system.bodies.size());
+  cw.hinge_delta.resize(system.bodies.size());
+  for (std::size_t b = 0; b < system.bodies.size(); ++b) {
+    const int k = system.bodies[b].n_generalized();
     cw.column[b].setZero(k);
     cw.response[b].setZero(k);
     cw.hinge_force[b].setZero(k);
@@ -87,13 +87,13 @@ void init_constraint_workspace(const Model& model, ConstraintWorkspace& cw) {
   cw.ldlt.analyzePattern(cw.N_sparse);
 }
 
-void add_constraint_rates(const Model& model, const VecX& q, const VecX& v,
+void add_constraint_rates(const ConstrainedSystem& system, const VecX& q, const VecX& v,
                           std::vector<BodyWorkspace>& bodies, ConstraintWorkspace& cw,
                           VecX& rates) {
-  if (!model.constraints.hinges.empty()) {
-    add_hinge_spring_rates(model, v, bodies, cw.hinge_force, cw.hinge_delta, rates);
+  if (!system.constraints.hinges.empty()) {
+    add_hinge_spring_rates(system, v, bodies, cw.hinge_force, cw.hinge_delta, rates);
   }
-  const std::vector<PointConstraintModel>& points = model.constraints.points;
+  const std::vector<PointConstraintModel>& points = system.constraints.points;
   const int m = cw.n_constraints;
   if (m == 0) return;
 
@@ -102,7 +102,7 @@ void add_constraint_rates(const Model& model, const VecX& q, const VecX& v,
     for (int e = 0; e < 2; ++e) {
       const ConstraintPoint& end = points[l].ends[e];
       if (end.body < 0) continue;
-      const BodyModel& body = model.bodies[end.body];
+      const BodyModel& body = system.bodies[end.body];
       BodyWorkspace& bw = bodies[end.body];
       MatX& G = cw.G[l][e];
       MatX& Y = cw.Y[l][e];
@@ -121,15 +121,15 @@ void add_constraint_rates(const Model& model, const VecX& q, const VecX& v,
     const PointConstraintModel& c = points[l];
     const ConstraintPoint& a = c.ends[0];
     const ConstraintPoint& b = c.ends[1];
-    const Vec3 C =
-        constraint_end_position(a, bodies, model, q) - constraint_end_position(b, bodies, model, q);
-    const Vec3 C_dot =
-        constraint_end_velocity(a, bodies, model, v) - constraint_end_velocity(b, bodies, model, v);
-    const Vec3 free =
-        constraint_end_rate(a, bodies, model, rates) - constraint_end_rate(b, bodies, model, rates);
+    const Vec3 C = constraint_end_position(a, bodies, system, q) -
+                   constraint_end_position(b, bodies, system, q);
+    const Vec3 C_dot = constraint_end_velocity(a, bodies, system, v) -
+                       constraint_end_velocity(b, bodies, system, v);
+    const Vec3 free = constraint_end_rate(a, bodies, system, rates) -
+                      constraint_end_rate(b, bodies, system, rates);
     cw.C.segment<3>(3 * l) = C;
     cw.C_dot.segment<3>(3 * l) = C_dot;
-    const bool first = model.bodies[a.body].order == DynamicsOrder::first;
+    const bool first = system.bodies[a.body].order == DynamicsOrder::first;
     // First order: C-dot + alpha C = 0, the velocity-level form whose solution is (7.16).
     cw.r.segment<3>(3 * l) =
         first ? Vec3(free + c.alpha * C) : Vec3(free + 2.0 * c.alpha * C_dot + c.beta * c.beta * C);
@@ -173,7 +173,7 @@ void add_constraint_rates(const Model& model, const VecX& q, const VecX& v,
     for (int e = 0; e < 2; ++e) {
       const int b = points[l].ends[e].body;
       if (b < 0) continue;
-      const BodyModel& body = model.bodies[b];
+      const BodyModel& body = system.bodies[b];
       VecX& delta = cw.response[b];
       delta.noalias() = end_sign(e) * cw.Y[l][e] * f;
       add_generalized_rate(body, bodies[b], delta, rates);
@@ -181,28 +181,28 @@ void add_constraint_rates(const Model& model, const VecX& q, const VecX& v,
   }
 }
 
-Real max_constraint_violation(const Model& model, const VecX& q,
+Real max_constraint_violation(const ConstrainedSystem& system, const VecX& q,
                               const std::vector<BodyWorkspace>& bodies) {
   Real worst = 0;
-  for (const PointConstraintModel& c : model.constraints.points) {
-    const Vec3 C = constraint_end_position(c.ends[0], bodies, model, q) -
-                   constraint_end_position(c.ends[1], bodies, model, q);
+  for (const PointConstraintModel& c : system.constraints.points) {
+    const Vec3 C = constraint_end_position(c.ends[0], bodies, system, q) -
+                   constraint_end_position(c.ends[1], bodies, system, q);
     worst = std::max(worst, C.norm());
   }
   return worst;
 }
 
-Real constraint_energy_allowance(const Model& model, const VecX& q, const VecX& v,
+Real constraint_energy_allowance(const ConstrainedSystem& system, const VecX& q, const VecX& v,
                                  const std::vector<BodyWorkspace>& bodies) {
   Real allowance = 0;
-  for (const PointConstraintModel& c : model.constraints.points) {
-    const Vec3 C = constraint_end_position(c.ends[0], bodies, model, q) -
-                   constraint_end_position(c.ends[1], bodies, model, q);
-    const Vec3 C_dot = constraint_end_velocity(c.ends[0], bodies, model, v) -
-                       constraint_end_velocity(c.ends[1], bodies, model, v);
+  for (const PointConstraintModel& c : system.constraints.points) {
+    const Vec3 C = constraint_end_position(c.ends[0], bodies, system, q) -
+                   constraint_end_position(c.ends[1], bodies, system, q);
+    const Vec3 C_dot = constraint_end_velocity(c.ends[0], bodies, system, v) -
+                       constraint_end_velocity(c.ends[1], bodies, system, v);
     Real mass = 0;
     for (const ConstraintPoint& end : c.ends) {
-      if (end.body >= 0) mass += model.bodies[end.body].mass;
+      if (end.body >= 0) mass += system.bodies[end.body].mass;
     }
     const Real speed = std::max(c.alpha, c.beta) * C.norm() + C_dot.norm();
     allowance += mass * speed * speed;

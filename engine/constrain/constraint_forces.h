@@ -28,8 +28,8 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
+#include "constrain/constraint_model.h"
 #include "deform/body_dynamics.h"
-#include "sim/model.h"
 
 namespace pbm {
 
@@ -57,22 +57,22 @@ struct ConstraintWorkspace {
   Real regularization = 0;                     // eps of the last solve
 };
 
-void init_constraint_workspace(const Model& model, ConstraintWorkspace& cw);
+void init_constraint_workspace(const ConstrainedSystem& system, ConstraintWorkspace& cw);
 
 // Adds the hinge springs' and the constraint forces' response to `rates` (the whole v-dot of
 // this evaluation: accelerations of second-order bodies, velocities of first-order ones, as
 // solve_body_dynamics returned them). Needs every body's kinematics and factored A at (q, v).
-void add_constraint_rates(const Model& model, const VecX& q, const VecX& v,
+void add_constraint_rates(const ConstrainedSystem& system, const VecX& q, const VecX& v,
                           std::vector<BodyWorkspace>& bodies, ConstraintWorkspace& cw, VecX& rates);
 
 // max_l |C_l| [m] at the kinematics in `bodies` (0 without constraints).
-Real max_constraint_violation(const Model& model, const VecX& q,
+Real max_constraint_violation(const ConstrainedSystem& system, const VecX& q,
                               const std::vector<BodyWorkspace>& bodies);
 
 // Kinetic energy Baumgarte's feedback may legitimately add while parts assemble (for the
 // stability guard): sum over constraints of (m_a + m_b) (alpha |C| + |C-dot|)^2, a bound on what
 // pulling the violation shut at the rates of (7.14) gives the two bodies [J].
-Real constraint_energy_allowance(const Model& model, const VecX& q, const VecX& v,
+Real constraint_energy_allowance(const ConstrainedSystem& system, const VecX& q, const VecX& v,
                                  const std::vector<BodyWorkspace>& bodies);
 
 }  // namespace pbm

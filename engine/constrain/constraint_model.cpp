@@ -6,8 +6,7 @@
 #include <utility>
 
 #include "core/error.h"
-#include "sim/model.h"
-#include "sim/state.h"
+#include "core/quaternion.h"
 
 namespace pbm {
 namespace {
@@ -18,7 +17,7 @@ namespace {
 constexpr Real kStiffGainEuler = 0.5;
 constexpr Real kStiffGainRungeKutta = 1.0;
 
-ConstraintPoint compile_end(const Scene& scene, const std::vector<BodyModel>& bodies,
+ConstraintPoint compile_end(const std::string& file, std::span<const BodyModel> bodies,
                             const ConstraintEndDef& def, const std::string& path) {
   ConstraintPoint end;
   if (def.body < 0) {
@@ -26,27 +25,26 @@ ConstraintPoint compile_end(const Scene& scene, const std::vector<BodyModel>& bo
     return end;
   }
   if (def.body >= static_cast<int>(bodies.size())) {
-    throw Error(scene.file, path + ".body", "no such body");
+    throw Error(file, path + ".body", "no such body");
   }
   end.body = def.body;
   const BodyModel& body = bodies[def.body];
   if (def.point) {
     end.point = *def.point;
   } else if (def.node >= 0) {
-    if (def.node >= body.n_nodes()) throw Error(scene.file, path + ".node", "no such node");
+    if (def.node >= body.n_nodes()) throw Error(file, path + ".node", "no such node");
     end.node = def.node;
   } else if (def.material_point) {
     end.node = nearest_node(body.tessellation, *def.material_point);
   } else {
-    throw Error(scene.file, path, "needs node, material_point or point");
+    throw Error(file, path, "needs node, material_point or point");
   }
   return end;
 }
 
-Mat3 initial_rotation(const Scene& scene, int body) {
-  return body < 0
-             ? Mat3::Identity()
-             : rotation_from_quaternion(scene.bodies[static_cast<std::size_t>(body)].orientation);
+Mat3 initial_rotation(std::span<const BodyDef> body_defs, int body) {
+  return body < 0 ? Mat3::Identity()
+                  : rotation_from_quaternion(body_defs[static_cast<std::size_t>(body)].orientation);
 }
 
 // Union-find over bodies: a constraint joining two bodies already connected (other than through
@@ -59,25 +57,29 @@ int find_root(std::vector<int>& parent, int i) {
 
 }  // namespace
 
-ConstraintSystemModel build_constraints(const Scene& scene, const std::vector<BodyModel>& bodies) {
+ConstraintSystemModel build_constraints(std::span<const ConstraintDef> defs,
+                                        std::span<const BodyDef> body_defs,
+                                        std::span<const BodyModel> bodies,
+                                        const ConstraintSettings& settings,
+                                        const std::string& file) {
   ConstraintSystemModel system;
-  system.solver = scene.solver.constraint_solver;
-  const Real alpha_default = scene.solver.constraint_alpha;
-  const Real beta_default = scene.solver.constraint_beta.value_or(alpha_default);
-  for (std::size_t c = 0; c < scene.constraints.size(); ++c) {
-    const ConstraintDef& def = scene.constraints[c];
+  system.solver = settings.solver;
+  const Real alpha_default = settings.alpha;
+  const Real beta_default = settings.beta.value_or(alpha_default);
+  for (std::size_t c = 0; c < defs.size(); ++c) {
+    const ConstraintDef& def = defs[c];
     const std::string path = "constraints[" + std::to_string(c) + "]";
     PointConstraintModel point;
     point.name = def.name;
     point.source = static_cast<int>(c);
     point.alpha = def.alpha.value_or(alpha_default);
     point.beta = def.beta.value_or(def.alpha ? point.alpha : beta_default);
-    point.ends[0] = compile_end(scene, bodies, def.a, path + ".a");
-    point.ends[1] = compile_end(scene, bodies, def.b, path + ".b");
-    if (point.ends[0].body < 0) throw Error(scene.file, path + ".a", "must be a body point");
+    point.ends[0] = compile_end(file, bodies, def.a, path + ".a");
+    point.ends[1] = compile_end(file, bodies, def.b, path + ".b");
+    if (point.ends[0].body < 0) throw Error(file, path + ".a", "must be a body point");
     for (const ConstraintPoint& end : point.ends) {
       if (end.body >= 0 && bodies[end.body].order != bodies[point.ends[0].body].order) {
-        throw Error(scene.file, path + ".b.body",
+        throw Error(file, path + ".b.body",
                     "both bodies of a constraint need the same dynamics order (the first-order "
                     "model (7.4) constrains velocities, the second-order model (7.3) "
                     "accelerations)");
@@ -88,8 +90,8 @@ ConstraintSystemModel build_constraints(const Scene& scene, const std::vector<Bo
       continue;
     }
     // Hinge: the axis through each end's point, in that end's frame at the initial state.
-    const Mat3 R_a = initial_rotation(scene, def.a.body);
-    const Mat3 R_b = initial_rotation(scene, def.b.body);
+    const Mat3 R_a = initial_rotation(body_defs, def.a.body);
+    const Mat3 R_b = initial_rotation(body_defs, def.b.body);
     const Vec3 axis_a = R_a.transpose() * def.axis;
     const Vec3 axis_b = R_b.transpose() * def.axis;
     const Real h = 0.5 * def.length;
@@ -132,10 +134,10 @@ ConstraintSystemModel build_constraints(const Scene& scene, const std::vector<Bo
     parent[ra] = rb;
   }
 
-  const bool euler = scene.solver.integrator == IntegratorKind::euler;
+  const bool euler = settings.integrator == IntegratorKind::euler;
   const Real limit = euler ? kStiffGainEuler : kStiffGainRungeKutta;
   for (const PointConstraintModel& point : system.points) {
-    const Real gain = std::max(point.alpha, point.beta) * scene.solver.dt;
+    const Real gain = std::max(point.alpha, point.beta) * settings.dt;
     if (gain > limit) {
       system.notes.push_back("constraint '" + point.name + "': alpha dt = " + std::to_string(gain) +
                              " > " + std::to_string(limit) + " is stiff for the " +

@@ -9,15 +9,18 @@
 #pragma once
 
 #include <array>
+#include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "constrain/constraint_def.h"
 #include "core/types.h"
-#include "scene/scene.h"
+#include "deform/body_def.h"
+#include "deform/body_model.h"
+#include "integrate/integrators.h"
 
 namespace pbm {
-
-struct BodyModel;
 
 // One end of a constraint.
 //   body < 0:   a world anchor, x = point (world frame)
@@ -62,9 +65,29 @@ struct ConstraintSystemModel {
   bool empty() const { return points.empty() && hinges.empty(); }
 };
 
-// Compiles scene.constraints against the already built bodies: resolves material points to nodes,
-// splits hinges, picks the gains (per constraint, else the solver's; beta defaults to alpha),
+// What the constraint stages read: the constraints and the bodies they join (the Model's).
+struct ConstrainedSystem {
+  const ConstraintSystemModel& constraints;
+  std::span<const BodyModel> bodies;
+};
+
+// The solver's settings a constraint system is compiled with (the scene's "solver" section).
+struct ConstraintSettings {
+  Real alpha = 10;           // default Baumgarte alpha [1/s]
+  std::optional<Real> beta;  // default beta [1/s]; absent: alpha (7.16)
+  ConstraintSolverKind solver = ConstraintSolverKind::dense;
+  IntegratorKind integrator = IntegratorKind::euler;  // for the stiff-gain note
+  Real dt = 0.001;                                    // substep [s], likewise
+};
+
+// Compiles the constraint definitions against the already built bodies (their definitions give
+// the initial orientations hinge axes are measured in): resolves material points to nodes,
+// splits hinges, picks the gains (per constraint, else the settings'; beta defaults to alpha),
 // detects loops. Throws pbm::Error (file, "constraints[i]...") on what the parser cannot check.
-ConstraintSystemModel build_constraints(const Scene& scene, const std::vector<BodyModel>& bodies);
+ConstraintSystemModel build_constraints(std::span<const ConstraintDef> defs,
+                                        std::span<const BodyDef> body_defs,
+                                        std::span<const BodyModel> bodies,
+                                        const ConstraintSettings& settings,
+                                        const std::string& file);
 
 }  // namespace pbm

@@ -12,17 +12,17 @@ Mat3 rotation_of(int body, const std::vector<BodyWorkspace>& bodies) {
 }
 
 // omega of a body in the world frame (zero for the world).
-Vec3 world_angular_velocity(const Model& model, int body, const std::vector<BodyWorkspace>& bodies,
-                            const VecX& v) {
+Vec3 world_angular_velocity(const ConstrainedSystem& system, int body,
+                            const std::vector<BodyWorkspace>& bodies, const VecX& v) {
   if (body < 0) return Vec3::Zero();
-  return bodies[body].R * v.segment<3>(model.bodies[body].v_offset + 3);
+  return bodies[body].R * v.segment<3>(system.bodies[body].v_offset + 3);
 }
 
-void add_torque(const Model& model, int body, const Vec3& tau_world,
+void add_torque(const ConstrainedSystem& system, int body, const Vec3& tau_world,
                 std::vector<BodyWorkspace>& bodies, std::vector<VecX>& force,
                 std::vector<VecX>& delta, VecX& rates) {
   if (body < 0) return;
-  const BodyModel& b = model.bodies[body];
+  const BodyModel& b = system.bodies[body];
   BodyWorkspace& bw = bodies[body];
   VecX& g = force[body];
   g.setZero();
@@ -44,27 +44,29 @@ Real hinge_angle(const HingeSpringModel& hinge, const std::vector<BodyWorkspace>
   return std::atan2(n.dot(e_b.cross(e_a)), e_b.dot(e_a));
 }
 
-Real hinge_spring_energy(const Model& model, const std::vector<BodyWorkspace>& bodies) {
+Real hinge_spring_energy(const ConstrainedSystem& system,
+                         const std::vector<BodyWorkspace>& bodies) {
   Real energy = 0;
-  for (const HingeSpringModel& hinge : model.constraints.hinges) {
+  for (const HingeSpringModel& hinge : system.constraints.hinges) {
     const Real stretch = hinge_angle(hinge, bodies) - hinge.rest_angle;
     energy += 0.5 * hinge.stiffness * stretch * stretch;
   }
   return energy;
 }
 
-void add_hinge_spring_rates(const Model& model, const VecX& v, std::vector<BodyWorkspace>& bodies,
-                            std::vector<VecX>& force, std::vector<VecX>& delta, VecX& rates) {
-  for (const HingeSpringModel& hinge : model.constraints.hinges) {
+void add_hinge_spring_rates(const ConstrainedSystem& system, const VecX& v,
+                            std::vector<BodyWorkspace>& bodies, std::vector<VecX>& force,
+                            std::vector<VecX>& delta, VecX& rates) {
+  for (const HingeSpringModel& hinge : system.constraints.hinges) {
     if (hinge.stiffness == 0 && hinge.damping == 0) continue;
     const Vec3 n = bodies[hinge.body_a].R * hinge.axis_a;
-    const Real spin = n.dot(world_angular_velocity(model, hinge.body_a, bodies, v) -
-                            world_angular_velocity(model, hinge.body_b, bodies, v));
+    const Real spin = n.dot(world_angular_velocity(system, hinge.body_a, bodies, v) -
+                            world_angular_velocity(system, hinge.body_b, bodies, v));
     // -dE/dtheta (3.33's form), plus the damper.
     const Real moment =
         -hinge.stiffness * (hinge_angle(hinge, bodies) - hinge.rest_angle) - hinge.damping * spin;
-    add_torque(model, hinge.body_a, moment * n, bodies, force, delta, rates);
-    add_torque(model, hinge.body_b, -moment * n, bodies, force, delta, rates);
+    add_torque(system, hinge.body_a, moment * n, bodies, force, delta, rates);
+    add_torque(system, hinge.body_b, -moment * n, bodies, force, delta, rates);
   }
 }
 

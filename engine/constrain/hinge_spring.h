@@ -10,7 +10,6 @@
 
 #include "constrain/constraint_model.h"
 #include "deform/body_dynamics.h"
-#include "sim/model.h"
 
 namespace pbm {
 
@@ -18,11 +17,12 @@ namespace pbm {
 Real hinge_angle(const HingeSpringModel& hinge, const std::vector<BodyWorkspace>& bodies);
 
 // Sum of 1/2 k (theta - theta_0)^2 over the model's hinges [J].
-Real hinge_spring_energy(const Model& model, const std::vector<BodyWorkspace>& bodies);
+Real hinge_spring_energy(const ConstrainedSystem& system, const std::vector<BodyWorkspace>& bodies);
 
 // rates += the response of each body to its hinge torques: second order, A^+ of the generalized
 // force; first order (3.51), (nu A)^+. force and delta: scratch per body, k entries each.
-void add_hinge_spring_rates(const Model& model, const VecX& v, std::vector<BodyWorkspace>& bodies,
-                            std::vector<VecX>& force, std::vector<VecX>& delta, VecX& rates);
+void add_hinge_spring_rates(const ConstrainedSystem& system, const VecX& v,
+                            std::vector<BodyWorkspace>& bodies, std::vector<VecX>& force,
+                            std::vector<VecX>& delta, VecX& rates);
 
 }  // namespace pbm

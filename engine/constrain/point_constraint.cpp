@@ -11,28 +11,28 @@ Vec3 body_point(const ConstraintPoint& end, const BodyWorkspace& bw) {
 }  // namespace
 
 Vec3 constraint_end_position(const ConstraintPoint& end, const std::vector<BodyWorkspace>& bodies,
-                             const Model& model, const VecX& q) {
+                             const ConstrainedSystem& system, const VecX& q) {
   if (end.body < 0) return end.point;
   const BodyWorkspace& bw = bodies[end.body];
   if (end.node >= 0) return bw.x[end.node];
   // x = c + R p (3.3) for a point fixed in the frame.
-  return q.segment<3>(model.bodies[end.body].q_offset) + bw.R * end.point;
+  return q.segment<3>(system.bodies[end.body].q_offset) + bw.R * end.point;
 }
 
 Vec3 constraint_end_velocity(const ConstraintPoint& end, const std::vector<BodyWorkspace>& bodies,
-                             const Model& model, const VecX& v) {
+                             const ConstrainedSystem& system, const VecX& v) {
   if (end.body < 0) return Vec3::Zero();
   const BodyWorkspace& bw = bodies[end.body];
   if (end.node >= 0) return bw.x_dot[end.node];
-  const int offset = model.bodies[end.body].v_offset;
+  const int offset = system.bodies[end.body].v_offset;
   const Vec3 omega = v.segment<3>(offset + 3);
   return v.segment<3>(offset) + bw.R * omega.cross(end.point);
 }
 
 Vec3 constraint_end_rate(const ConstraintPoint& end, const std::vector<BodyWorkspace>& bodies,
-                         const Model& model, const VecX& rates) {
+                         const ConstrainedSystem& system, const VecX& rates) {
   if (end.body < 0) return Vec3::Zero();
-  const BodyModel& body = model.bodies[end.body];
+  const BodyModel& body = system.bodies[end.body];
   const BodyWorkspace& bw = bodies[end.body];
   const auto r = rates.segment(body.v_offset, body.v_size);
   const Vec3 p = body_point(end, bw);

@@ -16,24 +16,23 @@
 
 #include "constrain/constraint_model.h"
 #include "deform/body_dynamics.h"
-#include "sim/model.h"
 
 namespace pbm {
 
 // x of the end [m], world frame.
 Vec3 constraint_end_position(const ConstraintPoint& end, const std::vector<BodyWorkspace>& bodies,
-                             const Model& model, const VecX& q);
+                             const ConstrainedSystem& system, const VecX& q);
 
 // x-dot of the end [m/s], world frame; v is the whole State::v.
 Vec3 constraint_end_velocity(const ConstraintPoint& end, const std::vector<BodyWorkspace>& bodies,
-                             const Model& model, const VecX& v);
+                             const ConstrainedSystem& system, const VecX& v);
 
 // The end's unconstrained rate, from the body's solved rates `rates` (the whole v-dot vector of
 // this evaluation): second order, x-ddot = c-ddot + R (omega-dot x p + J q_s-ddot + d-ddot + a)
 // with a the velocity-product term (3.18), i.e. L q-ddot + L-dot q-dot of (7.21); first order,
 // x-dot = c-dot + R (omega x p + J q_s-dot + d-dot) from the velocities (3.51) solved.
 Vec3 constraint_end_rate(const ConstraintPoint& end, const std::vector<BodyWorkspace>& bodies,
-                         const Model& model, const VecX& rates);
+                         const ConstrainedSystem& system, const VecX& rates);
 
 // G = P^T R^T (k x 3) into G, sized k x 3 by the caller.
 void constraint_end_jacobian_transpose(const ConstraintPoint& end, const BodyModel& body,

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/quaternion.h"
 #include "deform/reference_shape.h"
 #include "deform/superquadric.h"
-#include "sim/state.h"
 
 namespace pbm {
 namespace {

@@ -101,4 +101,21 @@ Tessellation tessellate(const TessellationDef& def) {
   return t;
 }
 
+int nearest_node(const Tessellation& t, const Vec2& uv) {
+  int best = 0;
+  Real best_d = 1e300;
+  for (int i = 0; i < t.node_count(); ++i) {
+    Real du = t.uv[i].x() - uv.x();
+    Real dv = std::remainder(t.uv[i].y() - uv.y(), 2 * std::numbers::pi);
+    // At the poles v is arbitrary (fig. 4.1): only u counts there.
+    if (i == t.south_pole || i == t.north_pole) dv = 0;
+    const Real d = du * du + dv * dv * std::cos(uv.x()) * std::cos(uv.x());
+    if (d < best_d) {
+      best_d = d;
+      best = i;
+    }
+  }
+  return best;
+}
+
 }  // namespace pbm

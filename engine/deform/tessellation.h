@@ -39,7 +39,7 @@
 #include <vector>
 
 #include "core/types.h"
-#include "scene/scene.h"
+#include "deform/body_def.h"
 
 namespace pbm {
 
@@ -73,6 +73,10 @@ struct Tessellation {
 
 // Builds the tessellation; throws pbm::Error naming the field if rings < 2 or segments < 3.
 Tessellation tessellate(const TessellationDef& def);
+
+// The node nearest to material coordinates (u, v) (v wraps at the seam; at the poles only u
+// counts): where springs and constraints given by a material point act.
+int nearest_node(const Tessellation& t, const Vec2& uv);
 
 // Number of nodes of an element of this kind: 4 for quads, 3 for triangles.
 inline int element_node_count(ElementKind kind) {

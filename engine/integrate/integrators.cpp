@@ -62,9 +62,9 @@ constexpr Real e1 = 71.0 / 57600, e3 = -71.0 / 16695, e4 = 71.0 / 1920, e5 = -17
 }  // namespace
 
 bool rk45_advance(const DerivativeFn& f, Real t, Real dt, Real tol, VecX& q, VecX& v,
-                  IntegratorWorkspace& ws, IntegrationStats& stats) {
+                  Real& step_size, IntegratorWorkspace& ws, IntegrationStats& stats) {
   const Real t_end = t + dt;
-  Real h = ws.rk45_h > 0 ? std::min(ws.rk45_h, dt) : dt;
+  Real h = step_size > 0 ? std::min(step_size, dt) : dt;
   auto stage = [&](int k, Real tk, std::initializer_list<std::pair<int, Real>> terms, Real hh) {
     ws.q_stage = q;
     ws.v_stage = v;
@@ -108,7 +108,7 @@ bool rk45_advance(const DerivativeFn& f, Real t, Real dt, Real tol, VecX& q, Vec
       const Real grow = err > 0 ? std::min(5.0, 0.9 * std::pow(err, -0.2)) : 5.0;
       const Real h_next = h * grow;
       if (t < t_end) h = h_next;
-      ws.rk45_h = h_next;
+      step_size = h_next;
     } else {
       ++stats.rejected;
       h *= std::max(0.1, 0.9 * std::pow(err, -0.25));

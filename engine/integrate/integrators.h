@@ -3,22 +3,24 @@
 // tolerance. They see the system only through two callbacks, so they know nothing of bodies.
 #pragma once
 
-#include <functional>
-
+#include "core/function_ref.h"
 #include "core/types.h"
 
 namespace pbm {
 
+enum class IntegratorKind { euler, rk4, rk45 };
+
 // qdot (n_q) and vdot (n_v) of the system at (t, q, v).
 using DerivativeFn =
-    std::function<void(Real t, const VecX& q, const VecX& v, VecX& q_dot, VecX& v_dot)>;
+    FunctionRef<void(Real t, const VecX& q, const VecX& v, VecX& q_dot, VecX& v_dot)>;
 // Overwrites q_dot with the kinematic rates implied by the velocities v (second-order parts only).
-using KinematicFn = std::function<void(const VecX& q, const VecX& v, VecX& q_dot)>;
+using KinematicFn = FunctionRef<void(const VecX& q, const VecX& v, VecX& q_dot)>;
 
+// Scratch of the stages, sized once; what carries from one call to the next (rk45's step size)
+// is the caller's, passed in and out (it belongs in the State: it changes later steps).
 struct IntegratorWorkspace {
   VecX kq[7], kv[7];  // stage derivatives
   VecX q_stage, v_stage, q_err, v_err;
-  Real rk45_h = 0;  // step size carried between calls (0 = start with the full interval)
   void resize(int n_q, int n_v);
 };
 
@@ -35,8 +37,10 @@ void euler_step(const DerivativeFn& f, const KinematicFn& kin, Real t, Real dt, 
 void rk4_step(const DerivativeFn& f, Real t, Real dt, VecX& q, VecX& v, IntegratorWorkspace& ws,
               IntegrationStats& stats);
 // Advances exactly dt in adaptive substeps whose scaled local error
-// max_i |err_i| / (tol + tol |y_i|) stays <= 1. Returns false if the step size underflows.
+// max_i |err_i| / (tol + tol |y_i|) stays <= 1. step_size is the step to try first (0: all of
+// dt) and on return the step the last accepted one suggests. Returns false if the step size
+// underflows.
 bool rk45_advance(const DerivativeFn& f, Real t, Real dt, Real tolerance, VecX& q, VecX& v,
-                  IntegratorWorkspace& ws, IntegrationStats& stats);
+                  Real& step_size, IntegratorWorkspace& ws, IntegrationStats& stats);
 
 }  // namespace pbm

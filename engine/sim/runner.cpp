@@ -287,11 +287,6 @@ std::string RunnerCore::rebuild(Scene edited) {
   const State& old_start = *timeline_.find(0);
   const bool same_start = model.solver.fps == model_->solver.fps &&
                           same_bits(start.q, old_start.q) && same_bits(start.v, old_start.v);
-  // The integrator's memory (rk45's step size, the contact flag of the step-size reduction)
-  // carries over an edit that keeps the state, so that a drag recorded while playing replays the
-  // same from the saved scene, where no rebuild interrupts the run.
-  const Real rk45_h = ws_->integrator.rk45_h;
-  const int contacts = ws_->contacts;
   // Same address: nothing outside holds the model, but the workspace is rebuilt from scratch
   // because its caches (shape, mass factorization) are keyed on q alone, not on the model.
   *model_ = std::move(model);
@@ -301,8 +296,6 @@ std::string RunnerCore::rebuild(Scene edited) {
   init_workspace(*model_, inputs_, *ws_);
   const int target = std::min(frame_, last_frame());
   if (same_start) {
-    ws_->integrator.rk45_h = rk45_h;
-    ws_->contacts = contacts;
     timeline_.drop_after(target);
     go_to(target);
   } else {

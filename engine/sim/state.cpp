@@ -4,23 +4,6 @@
 
 namespace pbm {
 
-Mat3 rotation_from_quaternion(const Vec4& q) {
-  const Vec4 n = q.normalized();
-  const Real s = n[0], v1 = n[1], v2 = n[2], v3 = n[3];
-  Mat3 R;  // (3.7)
-  R << 1 - 2 * (v2 * v2 + v3 * v3), 2 * (v1 * v2 - s * v3), 2 * (v1 * v3 + s * v2),
-      2 * (v1 * v2 + s * v3), 1 - 2 * (v1 * v1 + v3 * v3), 2 * (v2 * v3 - s * v1),
-      2 * (v1 * v3 - s * v2), 2 * (v2 * v3 + s * v1), 1 - 2 * (v1 * v1 + v2 * v2);
-  return R;
-}
-
-Vec4 quaternion_rate(const Vec4& q, const Vec3& w) {
-  // 1/2 q (x) (0, omega): the inverse of omega = G q-dot (A.2, A.3) for a body-frame omega.
-  const Real s = q[0], x = q[1], y = q[2], z = q[3];
-  return 0.5 * Vec4(-x * w.x() - y * w.y() - z * w.z(), s * w.x() + y * w.z() - z * w.y(),
-                    s * w.y() + z * w.x() - x * w.z(), s * w.z() + x * w.y() - y * w.x());
-}
-
 State initial_state(const Model& model) {
   State st;
   st.time = 0;
@@ -53,6 +36,8 @@ std::uint64_t hash_state(const State& state) {
   mix(&state.time, sizeof state.time);
   mix(state.q.data(), sizeof(Real) * state.q.size());
   mix(state.v.data(), sizeof(Real) * state.v.size());
+  mix(&state.rk45_step, sizeof state.rk45_step);
+  mix(&state.contact_nodes, sizeof state.contact_nodes);
   return h;
 }
 

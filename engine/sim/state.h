@@ -3,24 +3,29 @@
 
 #include <cstdint>
 
+#include "core/quaternion.h"
 #include "core/types.h"
 #include "sim/model.h"
 
 namespace pbm {
 
+// Everything that changes a later frame, and nothing else: restoring a State (a seek, the
+// timeline cache) and stepping on gives bit-identical results with any workspace.
 struct State {
   Real time = 0;  // [s]
   VecX q;         // generalized coordinates of every body, n_q
   VecX v;         // generalized velocities of every body, n_v
+  // rk45's step size to try first in the next substep [s] (0: the whole substep): the adaptive
+  // integrator's memory of the last accepted step.
+  Real rk45_step = 0;
+  // Nodes touching an obstacle or another body after the last substep: with
+  // solver.contact_step_reduction it decides whether the next substep is divided (end of 5.2.2).
+  int contact_nodes = 0;
 };
 
 State initial_state(const Model& model);
 
-// FNV-1a over the bytes of time, q and v: equal hashes <=> bit-identical states.
+// FNV-1a over the bytes of every field: equal hashes <=> bit-identical states.
 std::uint64_t hash_state(const State& state);
-
-// Quaternion (w,x,y,z) helpers for q_theta.
-Mat3 rotation_from_quaternion(const Vec4& q);                 // (3.7), q normalized first
-Vec4 quaternion_rate(const Vec4& q, const Vec3& omega_body);  // 1/2 q (x) (0, omega)
 
 }  // namespace pbm

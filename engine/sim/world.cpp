@@ -7,6 +7,7 @@
 #include "collide/rigid_contact.h"
 #include "constrain/hinge_spring.h"
 #include "deform/reference_shape.h"
+#include "deform/shape_parameters.h"
 
 namespace pbm {
 namespace {
@@ -94,7 +95,7 @@ void evaluate_derivative(const Model& model, const Inputs& inputs, Workspace& ws
   // (7.3), (7.4): every body's unconstrained rates are known; the constraint forces couple them.
   if (!model.constraints.empty()) {
     const auto t0 = Clock::now();
-    add_constraint_rates(model, q, v, ws.bodies, ws.constraints, v_dot);
+    add_constraint_rates({model.constraints, model.bodies}, q, v, ws.bodies, ws.constraints, v_dot);
     ws.stage_seconds[static_cast<int>(StepStage::constraints)] += seconds_since(t0);
   }
   for (const BodyModel& body : model.bodies) {
@@ -222,18 +223,11 @@ void init_workspace(const Model& model, const Inputs& inputs, Workspace& ws) {
   for (std::size_t b = 0; b < model.bodies.size(); ++b)
     resize_workspace(model.bodies[b], ws.bodies[b]);
   ws.integrator.resize(model.n_q, model.n_v);
-  ws.integrator.rk45_h = 0;
   ws.last_measured.valid = false;
   ws.first_order_velocity.setZero(model.n_v);
-  init_constraint_workspace(model, ws.constraints);
+  init_constraint_workspace({model.constraints, model.bodies}, ws.constraints);
   evaluate_drive(model, 0, ws.drive);
-  ws.derivative = [&model, &inputs, &ws](Real t, const VecX& q, const VecX& v, VecX& q_dot,
-                                         VecX& v_dot) {
-    evaluate_derivative(model, inputs, ws, t, q, v, q_dot, v_dot);
-  };
-  ws.kinematic = [&model](const VecX& q, const VecX& v, VecX& q_dot) {
-    kinematic_rates(model, q, v, q_dot);
-  };
+  ws.inputs = &inputs;
   ws.stage_seconds.fill(0);
 }
 
@@ -241,7 +235,8 @@ bool advance_substep(const Model& model, State& state, Real dt, Workspace& ws, i
   auto t0 = Clock::now();
   for (BodyWorkspace& bw : ws.bodies) bw.dt = dt;
   // Self-collision follows each node from where it is now (collide/self_collision.h).
-  record_step_start(model, state, dt, model.body_collisions, ws.body_collisions.self);
+  record_step_start(model.bodies, state.q, state.v, state.time, dt, model.body_collisions.options,
+                    ws.body_collisions.self);
   IntegrationStats istats;
   bool ok = true;
   auto derivative_seconds = [&ws] {
@@ -250,17 +245,24 @@ bool advance_substep(const Model& model, State& state, Real dt, Workspace& ws, i
            ws.stage_seconds[static_cast<int>(StepStage::constraints)];
   };
   const double before = derivative_seconds();
+  const Inputs& inputs = *ws.inputs;
+  auto derivative = [&model, &inputs, &ws](Real t, const VecX& q, const VecX& v, VecX& q_dot,
+                                           VecX& v_dot) {
+    evaluate_derivative(model, inputs, ws, t, q, v, q_dot, v_dot);
+  };
+  auto kinematic = [&model](const VecX& q, const VecX& v, VecX& q_dot) {
+    kinematic_rates(model, q, v, q_dot);
+  };
   switch (model.solver.integrator) {
     case IntegratorKind::euler:
-      euler_step(ws.derivative, ws.kinematic, state.time, dt, state.q, state.v, ws.integrator,
-                 istats);
+      euler_step(derivative, kinematic, state.time, dt, state.q, state.v, ws.integrator, istats);
       break;
     case IntegratorKind::rk4:
-      rk4_step(ws.derivative, state.time, dt, state.q, state.v, ws.integrator, istats);
+      rk4_step(derivative, state.time, dt, state.q, state.v, ws.integrator, istats);
       break;
     case IntegratorKind::rk45:
-      ok = rk45_advance(ws.derivative, state.time, dt, model.solver.tolerance, state.q, state.v,
-                        ws.integrator, istats);
+      ok = rk45_advance(derivative, state.time, dt, model.solver.tolerance, state.q, state.v,
+                        state.rk45_step, ws.integrator, istats);
       break;
   }
   evaluations += istats.evaluations;
@@ -282,16 +284,18 @@ bool advance_substep(const Model& model, State& state, Real dt, Workspace& ws, i
   // tracks put them at the step's end, the time of the positions being resolved (the rest of the
   // drive stays at the last evaluation's time).
   place_obstacles(model, state.time, ws.drive.obstacles);
+  const BodySet bodies{model.bodies, ws.bodies, state.q, state.v, state.time};
   ws.body_collision_stats =
-      resolve_body_collisions(model, state, ws, ws.body_collisions, model.body_collisions);
+      resolve_body_collisions(model.body_collisions, bodies, dt, ws.body_collisions);
   ws.contacts += ws.body_collision_stats.contacts;  // the end of 5.2.2's step reduction
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     const BodyModel& body = model.bodies[b];
     resolve_penetrations(ws.drive.obstacles, body, state.q.segment(body.q_offset, body.q_size),
                          state.v.segment(body.v_offset, body.v_size), ws.bodies[b]);
   }
-  resolve_body_self_collisions(model, state, ws, ws.body_collisions, model.body_collisions,
+  resolve_body_self_collisions(model.body_collisions.options, bodies, dt, ws.body_collisions,
                                ws.body_collision_stats);
+  state.contact_nodes = ws.contacts;
   ws.stage_seconds[static_cast<int>(StepStage::collisions)] += seconds_since(t0);
   return ok && all_finite(state);
 }
@@ -325,8 +329,9 @@ void measure_state(const Model& model, const State& state, Workspace& ws, FrameS
     bs.position = q.segment<3>(0);
   }
   if (!model.constraints.empty()) {
-    stats.elastic += hinge_spring_energy(model, ws.bodies);
-    stats.constraint_violation = max_constraint_violation(model, state.q, ws.bodies);
+    const ConstrainedSystem system{model.constraints, model.bodies};
+    stats.elastic += hinge_spring_energy(system, ws.bodies);
+    stats.constraint_violation = max_constraint_violation(system, state.q, ws.bodies);
   }
 }
 
@@ -363,7 +368,8 @@ FrameResult advance_frame(const Model& model, State& state, Workspace& ws) {
   floor += moving_obstacle_allowance(model, state.time, t_end);
   // Assembling parts (7.16) gain the kinetic energy Baumgarte's feedback gives them.
   if (!model.constraints.empty()) {
-    floor += constraint_energy_allowance(model, state.q, state.v, ws.bodies);
+    floor +=
+        constraint_energy_allowance({model.constraints, model.bodies}, state.q, state.v, ws.bodies);
   }
   const State start = state;
   ws.stage_seconds.fill(0);
@@ -375,7 +381,7 @@ FrameResult advance_frame(const Model& model, State& state, Workspace& ws) {
     int done = 0;
     for (int k = 0; k < substeps && ok; ++k) {
       // End of sec. 5.2.2: smaller steps while in contact, back to h after.
-      if (model.solver.contact_step_reduction && ws.contacts > 0) {
+      if (model.solver.contact_step_reduction && state.contact_nodes > 0) {
         const int m = static_cast<int>(std::ceil(1.0 / model.solver.contact_dt_factor - 1e-9));
         for (int j = 0; j < m && ok; ++j)
           ok = advance_substep(model, state, h / m, ws, evaluations);
@@ -419,7 +425,7 @@ FrameResult advance_frame(const Model& model, State& state, Workspace& ws) {
       result.stats.substeps = done;
       result.stats.retries = attempt;
       result.stats.evaluations = evaluations;
-      result.stats.contacts = ws.contacts;
+      result.stats.contacts = state.contact_nodes;
       result.stats.stage_seconds = ws.stage_seconds;
       for (const std::string& note : model.constraints.notes) {
         result.stats.notes += (result.stats.notes.empty() ? "" : "; ") + note;
@@ -428,7 +434,7 @@ FrameResult advance_frame(const Model& model, State& state, Workspace& ws) {
       return result;
     }
     state = start;
-    ws.integrator.rk45_h = 0;
+    state.rk45_step = 0;  // the retry starts with the whole substep
     result.message = failure;
   }
   result.ok = false;

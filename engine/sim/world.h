@@ -62,8 +62,7 @@ struct Workspace {
   ConstraintWorkspace constraints;
   Drive drive;
   VecX first_order_velocity;  // velocities of first-order bodies from the last evaluation
-  DerivativeFn derivative;
-  KinematicFn kinematic;
+  const Inputs* inputs = nullptr;
   std::array<double, static_cast<int>(StepStage::count)> stage_seconds{};
   int contacts = 0;                         // touching nodes in the last derivative evaluation
   BodyCollisionWorkspace body_collisions;   // 5.2.2, sized on first use

@@ -1,0 +1,29 @@
+// Keyframed curves: a value given at increasing times and interpolated between them. Every
+// subsystem's tracks use them (rest shapes, gravity, spring targets, obstacle and camera paths;
+// joint trajectories and inflow rates to come).
+#pragma once
+
+#include <vector>
+
+#include "core/types.h"
+
+namespace pbm {
+
+// step holds each key's value until the next key (recorded mouse drags).
+enum class Interpolation { linear, smooth, step };
+
+struct Keyframe {
+  Real time = 0;  // [s]
+  Real value = 0;
+};
+
+// Value at time t of keys (strictly increasing times, at least one): held constant before the
+// first and after the last key; linear, or smooth (cubic Hermite with Catmull-Rom tangents, C1
+// through every key), or step.
+Real evaluate_keys(Interpolation interpolation, const std::vector<Keyframe>& keys, Real t);
+
+// d/dt of evaluate_keys at t: 0 outside the keys and for step curves; at a key, the slope of the
+// interval that starts there (the one evaluate_keys uses).
+Real evaluate_keys_rate(Interpolation interpolation, const std::vector<Keyframe>& keys, Real t);
+
+}  // namespace pbm

@@ -1,0 +1,85 @@
+// BodyWorkspace: the scratch of one body's dynamics and contacts (deform/body_dynamics.h,
+// collide/rigid_contact.h), sized once for its BodyModel (no allocation inside a step) and
+// rebuildable at any time without changing a result (docs/architecture.md: determinism).
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Eigenvalues>
+
+#include "core/types.h"
+#include "deform/body_model.h"
+#include "deform/superquadric.h"
+
+namespace pbm {
+
+// Per-body scratch, sized once (no allocation inside a step). Rebuildable at any time.
+struct BodyWorkspace {
+  Mat3 R = Mat3::Identity();  // body -> world rotation (3.7)
+  VecX q_s;                   // current global parameters (n_shape)
+  VecX q_s_rest;              // rest values after tracks (n_shape)
+  std::vector<Vec3> s;        // reference shape at each node, body frame
+  std::vector<Vec3> p;        // s + d, body frame
+  std::vector<Vec3> p_dot;    // J q_s-dot + d-dot, body frame
+  std::vector<Vec3> a_vp;     // velocity-product acceleration a_i (3.18), body frame
+  std::vector<Vec3> x;        // world positions
+  std::vector<Vec3> x_dot;    // world velocities
+  std::vector<Vec3> force;    // external nodal forces, world frame [N]
+  // Collision forces (5.11, 5.12) on the rigid + global rows (c in the body frame, theta, q_s),
+  // k entries (see collide/rigid_contact.h).
+  VecX contact_generalized;
+  // Contact scratch: P^T y of each pressing point's direction (k x points, grown on demand),
+  // V^T times it, and per point a force and an inverse effective mass.
+  MatX contact_directions, contact_rotated;
+  VecX contact_magnitude, contact_mobility;
+  // Contact scratch (collide/rigid_contact.cpp): per node, the signed distance of c + R s_i;
+  // the samples of the global surface inside an obstacle.
+  std::vector<Real> surface_distance;
+  struct PressingPoint {
+    int sample = 0, obstacle = 0;
+    Real phi = 0;
+    Vec3 s = Vec3::Zero(), n = Vec3::Zero();  // body frame point, world normal
+  };
+  std::vector<PressingPoint> pressing;
+  struct SlipPoint {
+    int sample = 0;
+    Real speed = 0, share = 0, limit = 0;     // slip speed, stiffness share, beta_f |f_n|
+    Vec3 s = Vec3::Zero(), t = Vec3::Zero();  // body frame point and slip direction
+  };
+  std::vector<SlipPoint> slipping;
+  std::vector<int> penetrating;  // nodes inside an obstacle after a step
+  std::vector<int> contact;      // per node: index of the obstacle touched, or -1
+  // J_i^T of (2.6) for every node, n_s x 3 n_nodes: node i's block is columns 3i..3i+2, one
+  // contiguous n_s x 3 run (see add_Jt_y and J_times).
+  MatX Jt;
+  Mat3X J_node;                                  // 3 x n_shape scratch
+  std::vector<SuperquadricBasis> basis;          // superquadric bodies: per node, with s and J
+  std::vector<SignedPowers> u_powers, v_powers;  // per BodyModel::grid_u / grid_v entry
+  // The same for the contact samples' grid, filled on demand: an entry is current when its stamp
+  // equals sample_stamp (advanced whenever q_s may have changed).
+  std::vector<SignedPowers> sample_u_powers, sample_v_powers;
+  std::vector<unsigned> sample_u_stamp, sample_v_stamp;
+  unsigned sample_stamp = 0;
+  VecX K_q;  // K_dd q_d, body frame (3 n_nodes)
+  MatX A;    // k x k mass block of the generalized rigid+global coordinates
+  Eigen::SelfAdjointEigenSolver<MatX> A_eigen;  // A = V diag(lambda) V^T
+  VecX A_inverse_eigenvalues;                   // 1 / lambda on A's range, 0 on its null space
+  VecX A_tmp;                                   // k scratch
+  VecX r_g, b, gamma, alpha;                    // k-vectors
+  MatX mass_J, mass_pJ;                         // sum m J_i, sum m p~_i J_i (3 x n_s)
+  MatX mass_JtJ;                                // sum m J_i^T J_i (n_s x n_s)
+  VecX node_mass_3;                             // node masses repeated per coordinate (3 n_nodes)
+  MatX mass_Jt;                                 // Jt diag(node_mass_3), n_s x 3 n_nodes
+  bool kinematics_valid = false;
+  // s and J depend on q_s alone: they are reused while q_s is bitwise unchanged (the contact
+  // pass and the next step's first evaluation see the q_s the integrator produced).
+  VecX shape_key;  // q_s at which s (and J if shape_has_J) were evaluated
+  VecX mass_key;   // body q at which A was last factored (empty = none)
+  bool shape_has_J = false;
+  std::vector<Vec3> d_dot_body;  // d-dot per node, body frame (zero without q_d)
+  Vec3 omega = Vec3::Zero();     // angular velocity, body frame
+  Real dt = 0;                   // substep in progress (for rate-based contact damping)
+  const Vec3& d_dot(const BodyModel&, int i) const { return d_dot_body[i]; }
+};
+
+}  // namespace pbm
