@@ -181,12 +181,16 @@ void add_constraint_rates(const ConstrainedSystem& system, const VecX& q, const 
   }
 }
 
-Real max_constraint_violation(const ConstrainedSystem& system, const VecX& q,
-                              const std::vector<BodyWorkspace>& bodies) {
+Real measure_constraint_violations(const ConstrainedSystem& system, const VecX& q,
+                                   const std::vector<BodyWorkspace>& bodies, VecX& violations) {
+  const std::vector<PointConstraintModel>& points = system.constraints.points;
+  violations.resize(static_cast<Eigen::Index>(points.size()));
   Real worst = 0;
-  for (const PointConstraintModel& c : system.constraints.points) {
+  for (std::size_t l = 0; l < points.size(); ++l) {
+    const PointConstraintModel& c = points[l];
     const Vec3 C = constraint_end_position(c.ends[0], bodies, system, q) -
                    constraint_end_position(c.ends[1], bodies, system, q);
+    violations[static_cast<Eigen::Index>(l)] = C.norm();
     worst = std::max(worst, C.norm());
   }
   return worst;

@@ -65,9 +65,10 @@ void init_constraint_workspace(const ConstrainedSystem& system, ConstraintWorksp
 void add_constraint_rates(const ConstrainedSystem& system, const VecX& q, const VecX& v,
                           std::vector<BodyWorkspace>& bodies, ConstraintWorkspace& cw, VecX& rates);
 
-// max_l |C_l| [m] at the kinematics in `bodies` (0 without constraints).
-Real max_constraint_violation(const ConstrainedSystem& system, const VecX& q,
-                              const std::vector<BodyWorkspace>& bodies);
+// |C_l| of every point constraint l [m] into violations (resized to their count) at the
+// kinematics in `bodies`; returns max_l |C_l| (0 without constraints).
+Real measure_constraint_violations(const ConstrainedSystem& system, const VecX& q,
+                                   const std::vector<BodyWorkspace>& bodies, VecX& violations);
 
 // Kinetic energy Baumgarte's feedback may legitimately add while parts assemble (for the
 // stability guard): sum over constraints of (m_a + m_b) (alpha |C| + |C-dot|)^2, a bound on what

@@ -331,7 +331,8 @@ void measure_state(const Model& model, const State& state, Workspace& ws, FrameS
   if (!model.constraints.empty()) {
     const ConstrainedSystem system{model.constraints, model.bodies};
     stats.elastic += hinge_spring_energy(system, ws.bodies);
-    stats.constraint_violation = max_constraint_violation(system, state.q, ws.bodies);
+    stats.constraint_violation =
+        measure_constraint_violations(system, state.q, ws.bodies, stats.constraint_violations);
   }
 }
 

@@ -49,6 +49,9 @@ struct FrameStats {
   Real min_distance = 1e300;  // min signed distance of any node to any obstacle after the frame
   int contacts = 0;
   Real constraint_violation = 0;  // max_l |C_l| after the frame [m] (ch. 7; 0 without any)
+  // |C_l| of each point constraint l of ConstraintSystemModel::points [m] (its `source` names the
+  // scene constraint; a hinge has two).
+  VecX constraint_violations;
   std::array<double, static_cast<int>(StepStage::count)> stage_seconds{};
   std::vector<BodyFrameStats> bodies;
   // Warnings about the model's solvers, '; '-separated (a constraint loop's dense fallback,
