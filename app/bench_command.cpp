@@ -10,8 +10,7 @@
 #include "bullet_soft_ellipsoid.h"
 #include "core/error.h"
 #include "scene/scene_json.h"
-#include "sim/model.h"
-#include "sim/world.h"
+#include "sim/simulation.h"
 
 namespace pbm {
 namespace {
@@ -47,18 +46,17 @@ double time_ours(const Scene& base, int resolution, int steps, int& nodes) {
   body.material.mass = total_mass(base.bodies[0]);
   body.material.nodal_mass = 0;
   body.position = Vec3(-3.0, 0.0, resting_height(body) + kDropHeight);
-  const Model model = build_model(scene);
-  nodes = model.bodies[0].n_nodes();
-  const Inputs inputs;
-  Workspace ws;
-  init_workspace(model, inputs, ws);
-  State state = initial_state(model);
+  Simulation sim(scene);
+  nodes = sim.model.bodies[0].n_nodes();
+  const Real dt = sim.model.solver.dt;
   int evaluations = 0;
   for (int k = 0; k < kWarmUpSteps; ++k) {  // lands, and fills the caches
-    advance_substep(model, state, model.solver.dt, ws, evaluations);
+    advance_substep(sim.world, sim.inputs, sim.state, dt, sim.ws, evaluations);
   }
   const auto t0 = Clock::now();
-  for (int k = 0; k < steps; ++k) advance_substep(model, state, model.solver.dt, ws, evaluations);
+  for (int k = 0; k < steps; ++k) {
+    advance_substep(sim.world, sim.inputs, sim.state, dt, sim.ws, evaluations);
+  }
   return std::chrono::duration<double, std::micro>(Clock::now() - t0).count() / steps;
 }
 

@@ -8,8 +8,8 @@
 
 #include "deform/reference_shape.h"
 #include "sim/model.h"
+#include "sim/simulation.h"
 #include "sim/state.h"
-#include "sim/world.h"
 
 namespace pbm {
 namespace {
@@ -55,17 +55,17 @@ Scene build_scene(Topology topology, int k, ConstraintSolverKind solver) {
 
 // Microseconds of the constraints stage per step (one derivative evaluation per Euler step).
 double time_solve(Topology topology, int k, ConstraintSolverKind solver) {
-  const Model model = build_model(build_scene(topology, k, solver));
-  const Inputs inputs;
-  Workspace ws;
-  init_workspace(model, inputs, ws);
-  State state = initial_state(model);
+  Simulation sim(build_scene(topology, k, solver));
+  const Model& model = sim.model;
   int evaluations = 0;
-  advance_substep(model, state, model.solver.dt, ws, evaluations);  // warm caches
+  // The first step warms the caches.
+  advance_substep(sim.world, sim.inputs, sim.state, model.solver.dt, sim.ws, evaluations);
   const int steps = std::max(2, std::min(40, 4000 / k));
-  ws.stage_seconds.fill(0);
-  for (int n = 0; n < steps; ++n) advance_substep(model, state, model.solver.dt, ws, evaluations);
-  return 1e6 * ws.stage_seconds[static_cast<int>(StepStage::constraints)] / steps;
+  sim.ws.clock.reset();
+  for (int n = 0; n < steps; ++n) {
+    advance_substep(sim.world, sim.inputs, sim.state, model.solver.dt, sim.ws, evaluations);
+  }
+  return 1e6 * sim.ws.clock.stage_seconds[static_cast<int>(StepStage::constraints)] / steps;
 }
 
 // Least-squares slope of log(time) against log(k) over k >= 10.

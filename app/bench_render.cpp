@@ -11,8 +11,8 @@
 #include "headless_renderer.h"
 #include "scene/scene_json.h"
 #include "sim/model.h"
+#include "sim/simulation.h"
 #include "sim/snapshot.h"
-#include "sim/world.h"
 
 namespace pbm {
 namespace {
@@ -56,20 +56,18 @@ int run_bench_render(const std::string& scene_path, int frames) {
       body.material.mass = body.material.nodal_mass * 258;
       body.material.nodal_mass = 0;
     }
-    const Model model = build_model(scene);
-    const Inputs inputs;
-    Workspace ws;
-    init_workspace(model, inputs, ws);
-    State state = initial_state(model);
-    const Camera camera = model.scene.camera
-                              ? camera_from_scene(*model.scene.camera)
-                              : frame_bodies(make_snapshot(model, state, inputs, ws), 16.0f / 9.0f);
+    Simulation sim(scene);
+    const Model& model = sim.model;
+    const Camera camera =
+        model.scene.camera
+            ? camera_from_scene(*model.scene.camera)
+            : frame_bodies(make_snapshot(model, sim.state, sim.inputs, sim.ws), 16.0f / 9.0f);
     std::vector<double> simulate, upload, draw, bare;
     std::size_t triangles = 0;
     for (int f = 0; f < frames + 3; ++f) {  // 3 warm-up frames: shader JIT, buffer sizes
       auto t0 = Clock::now();
-      if (!advance_frame(model, state, ws).ok) break;
-      const Snapshot snapshot = make_snapshot(model, state, inputs, ws);
+      if (!advance_frame(sim).ok) break;
+      const Snapshot snapshot = make_snapshot(model, sim.state, sim.inputs, sim.ws);
       const double sim_ms = ms_since(t0);
       triangles = snapshot.bodies[0].triangles.size();
       renderer->render(snapshot, camera, options);

@@ -39,7 +39,8 @@ std::string state_json_line(const Model& model, const State& state, long frame) 
   return out;
 }
 
-std::string frame_stats_json(const Model& model, const FrameStats& s, long frame) {
+std::string frame_stats_json(const World& world, const FrameStats& s, long frame) {
+  const Model& model = *world.model;
   nlohmann::json j;
   j["frame"] = frame;
   j["time"] = s.time;
@@ -55,11 +56,19 @@ std::string frame_stats_json(const Model& model, const FrameStats& s, long frame
   j["contact_nodes"] = s.contacts;
   if (!model.constraints.empty()) j["constraint_violation"] = s.constraint_violation;
   if (!s.notes.empty()) j["notes"] = s.notes;
+  // Every stage and every subsystem on its own clock (sim/step_stage.h): a stage no subsystem of
+  // the scene runs in reports 0, a subsystem the scene lacks is left out.
   nlohmann::json stages;
-  for (int k = 0; k < static_cast<int>(StepStage::count); ++k) {
+  for (int k = 0; k < kStageCount; ++k) {
     stages[stage_name(static_cast<StepStage>(k))] = s.stage_seconds[k];
   }
   j["stage_seconds"] = stages;
+  nlohmann::json subsystems;
+  for (const Subsystem* subsystem : world.subsystems) {
+    subsystems[subsystem_name(subsystem->id)] =
+        s.subsystem_seconds[static_cast<int>(subsystem->id)];
+  }
+  j["subsystem_seconds"] = subsystems;
   nlohmann::json bodies = nlohmann::json::array();
   for (std::size_t b = 0; b < s.bodies.size(); ++b) {
     const BodyFrameStats& bs = s.bodies[b];

@@ -14,8 +14,8 @@ namespace pbm {
 // Doubles are printed with 17 significant digits, so equal states give equal bytes.
 std::string state_json_line(const Model& model, const State& state, long frame);
 
-// stats.json: per frame time, wall time, substeps, energies, minimum obstacle distance, stage
-// times and each body's q_s.
-std::string frame_stats_json(const Model& model, const FrameStats& stats, long frame);
+// stats.json: per frame time, wall time, substeps, energies, minimum obstacle distance, every
+// stage's and every present subsystem's time, and each body's q_s.
+std::string frame_stats_json(const World& world, const FrameStats& stats, long frame);
 
 }  // namespace pbm

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 
 #include "camera.h"
 #include "core/error.h"
@@ -15,9 +16,8 @@
 #include "png_io.h"
 #include "progress_bar.h"
 #include "scene/scene_json.h"
-#include "sim/model.h"
+#include "sim/simulation.h"
 #include "sim/snapshot.h"
-#include "sim/world.h"
 
 namespace pbm {
 namespace {
@@ -108,12 +108,12 @@ std::string frame_name(long frame) {
 }  // namespace
 
 int run_render(const RenderCommandOptions& o) {
-  Model model;
+  std::unique_ptr<Simulation> sim;
   Plan plan;
   try {
     const Scene scene = load_scene(o.scene);
-    model = build_model(scene);
-    plan = plan_render(o, model);
+    sim = std::make_unique<Simulation>(scene);
+    plan = plan_render(o, sim->model);
     if (!o.video.empty() && !have_program("ffmpeg")) {
       throw Error("", "--video",
                   "needs the ffmpeg program, which is not installed (apt-get install ffmpeg); "
@@ -129,10 +129,7 @@ int run_render(const RenderCommandOptions& o) {
   if (!headless) return 1;
   Renderer* renderer = &headless->renderer;
 
-  const Inputs inputs;
-  Workspace ws;
-  init_workspace(model, inputs, ws);
-  State state = initial_state(model);
+  const Model& model = sim->model;
   RenderOptions options;
   options.width = plan.width;
   options.height = plan.height;
@@ -141,7 +138,7 @@ int run_render(const RenderCommandOptions& o) {
   // The scene's camera moves only with its tracks (a function of time); without one the
   // framing of frame 0 holds for the whole render. Either way frame k is the same image whether
   // rendered alone or in a sequence.
-  const Camera framed = frame_bodies(make_snapshot(model, state, inputs, ws),
+  const Camera framed = frame_bodies(make_snapshot(model, sim->state, sim->inputs, sim->ws),
                                      static_cast<float>(plan.width) / plan.height);
   RgbImage image;
   image.width = plan.width;
@@ -152,7 +149,7 @@ int run_render(const RenderCommandOptions& o) {
   try {
     for (long frame = 0; frame <= plan.last; ++frame) {
       if (frame > 0) {
-        const FrameResult r = advance_frame(model, state, ws);
+        const FrameResult r = advance_frame(*sim);
         if (!r.ok) {
           spdlog::error("{}: simulation failed at frame {}: {}", o.scene, frame, r.message);
           code = 1;
@@ -160,8 +157,9 @@ int run_render(const RenderCommandOptions& o) {
         }
       }
       if (frame < plan.first) continue;
-      const Snapshot snapshot = make_snapshot(model, state, inputs, ws);  // drive at its time
-      renderer->render(snapshot, model.scene.camera ? camera_from_drive(ws.drive) : framed,
+      // drive at its time
+      const Snapshot snapshot = make_snapshot(model, sim->state, sim->inputs, sim->ws);
+      renderer->render(snapshot, model.scene.camera ? camera_from_drive(sim->ws.drive) : framed,
                        options);
       renderer->read_rgb(image.pixels);
       write_png((fs::path(o.out) / frame_name(frame)).string(), image);

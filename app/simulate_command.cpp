@@ -6,14 +6,14 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 
 #include "core/error.h"
 #include "frame_output.h"
 #include "mesh_export.h"
 #include "progress_bar.h"
 #include "scene/scene_json.h"
-#include "sim/model.h"
-#include "sim/world.h"
+#include "sim/simulation.h"
 
 namespace pbm {
 namespace {
@@ -81,14 +81,15 @@ int run_validate(const std::string& scene_path) {
 }
 
 int run_simulate(const SimulateOptions& o) {
-  Model model;
+  std::unique_ptr<Simulation> sim;
   long n_frames = 0;
   std::ofstream states, stats;
   std::optional<MeshFormat> mesh_format;
   try {
     Scene scene = load_scene(o.scene);
     apply_overrides(o, scene);
-    model = build_model(scene);
+    sim = std::make_unique<Simulation>(scene);
+    const Model& model = sim->model;
     if (o.frames && o.seconds) throw Error("", "--frames", "give --frames or --seconds, not both");
     if (o.frames) {
       if (*o.frames < 0 || *o.frames > 10'000'000)
@@ -115,40 +116,36 @@ int run_simulate(const SimulateOptions& o) {
     return 2;
   }
 
-  const Inputs inputs;
-  Workspace ws;
-  init_workspace(model, inputs, ws);
+  const Model& model = sim->model;
   for (const std::string& note : model.constraints.notes) spdlog::warn("{}: {}", o.scene, note);
-  State state = initial_state(model);
-  FrameStats stats0;
-  measure_state(model, state, ws, stats0);
+  const State& state = sim->state;
   bool first_stats = true;
   auto emit = [&](long frame, const FrameStats& fs_) {
     if (states) states << state_json_line(model, state, frame);
     if (stats) {
       stats << (first_stats ? "{\"scene\":" : ",\n");
       if (first_stats) stats << nlohmann::json(model.scene.name).dump() << ",\"frames\":[\n";
-      stats << frame_stats_json(model, fs_, frame);
+      stats << frame_stats_json(sim->world, fs_, frame);
       first_stats = false;
     }
     if (mesh_format) {
       char name[64];
       std::snprintf(name, sizeof name, "frame_%05ld%s", frame, mesh_format_extension(*mesh_format));
-      write_mesh((fs::path(o.mesh_dir) / name).string(), *mesh_format, body_meshes(model, ws));
+      write_mesh((fs::path(o.mesh_dir) / name).string(), *mesh_format, body_meshes(model, sim->ws));
     }
   };
   int code = 0;
   ProgressBar bar("simulate", n_frames);
   try {
-    emit(0, stats0);
+    emit(0, sim->stats);
     for (long f = 1; f <= n_frames; ++f) {
-      FrameResult r = advance_frame(model, state, ws);
+      const FrameResult r = advance_frame(*sim);
       if (!r.ok) {
         spdlog::error("{}: simulation failed at frame {}: {}", o.scene, f, r.message);
         code = 1;
         break;
       }
-      emit(f, r.stats);
+      emit(f, sim->stats);
       bar.update(f, "t=" + std::to_string(state.time).substr(0, 6) + "s");
     }
   } catch (const std::exception& e) {

@@ -3,7 +3,7 @@
 
 #include "deform/reference_shape.h"
 #include "scene/scene.h"
-#include "sim/world.h"
+#include "sim/simulation.h"
 
 namespace pbm::test {
 
@@ -34,18 +34,7 @@ inline Scene free_space(BodyDef body) {
   return s;
 }
 
-// Model, inputs, workspace and state of one scene, ready to step. Not copyable: the workspace's
-// callbacks refer to the model and inputs it holds.
-struct Simulation {
-  explicit Simulation(const Scene& scene) : model(build_model(scene)), state(initial_state(model)) {
-    init_workspace(model, inputs, ws);
-  }
-  Simulation(const Simulation&) = delete;
-  Simulation& operator=(const Simulation&) = delete;
-  const Model model;
-  const Inputs inputs;
-  Workspace ws;
-  State state;
-};
+// The engine's one setup path (sim/simulation.h): model, world, workspace, state, inputs.
+using pbm::Simulation;
 
 }  // namespace pbm::test

@@ -81,16 +81,16 @@ BalloonRun simulate(const std::string& name, double seconds) {
   double prev_x = scene.bodies[left].position.x(), prev_t = 0;
   bool rebounded = false;
   while (sim.state.time < seconds - 1e-9) {
-    const FrameResult r = advance_frame(sim.model, sim.state, sim.ws);
+    const FrameResult r = advance_frame(sim);
     EXPECT_TRUE(r.ok) << r.message;
     if (!r.ok) break;
     const Snapshot snap = make_snapshot(sim.model, sim.state, sim.inputs, sim.ws);
     run.max_penetration = std::max(run.max_penetration, max_penetration(balloons_of(snap)));
     if (sim.state.time > 1.0) {
-      run.max_violation_late = std::max(run.max_violation_late, r.stats.constraint_violation);
+      run.max_violation_late = std::max(run.max_violation_late, sim.stats.constraint_violation);
     }
-    const double x = r.stats.bodies[left].position.x();
-    const double xn = r.stats.bodies[neighbour].position.x();
+    const double x = sim.stats.bodies[left].position.x();
+    const double xn = sim.stats.bodies[neighbour].position.x();
     const double vx = (x - prev_x) / (sim.state.time - prev_t);
     if (run.first_contact < 0 && xn - x < spacing) run.first_contact = sim.state.time;
     if (run.first_contact >= 0) {

@@ -22,7 +22,9 @@ struct Stepper {
   explicit Stepper(const Scene& scene) : sim(scene) {}
   BodyCollisionStats step() {
     int evaluations = 0;
-    ok = advance_substep(sim.model, sim.state, sim.model.solver.dt, sim.ws, evaluations) && ok;
+    ok = advance_substep(sim.world, sim.inputs, sim.state, sim.model.solver.dt, sim.ws,
+                         evaluations) &&
+         ok;
     const BodyCollisionStats stats =
         resolve_body_collisions(collision_model(), bodies(), sim.model.solver.dt, cws);
     for (std::size_t b = 0; b < sim.model.bodies.size(); ++b) {
@@ -181,7 +183,8 @@ struct CollisionCall {
 CollisionCall advance_and_collide(Stepper& s) {
   CollisionCall call;
   int evaluations = 0;
-  call.ok = advance_substep(s.sim.model, s.sim.state, s.sim.model.solver.dt, s.sim.ws, evaluations);
+  call.ok = advance_substep(s.sim.world, s.sim.inputs, s.sim.state, s.sim.model.solver.dt, s.sim.ws,
+                            evaluations);
   call.before = totals(s);
   call.stats =
       resolve_body_collisions(s.collision_model(), s.bodies(), s.sim.model.solver.dt, s.cws);

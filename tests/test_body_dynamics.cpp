@@ -6,7 +6,7 @@
 
 #include "deform/body_dynamics.h"
 #include "scene_builders.h"
-#include "sim/world.h"
+#include "sim/simulation.h"
 
 namespace pbm {
 namespace {
@@ -16,9 +16,12 @@ struct Totals {
   Vec3 p = Vec3::Zero(), l = Vec3::Zero();
 };
 
-Totals totals(const Model& model, const State& state, Workspace& ws) {
+Totals totals(Simulation& sim) {
+  const Model& model = sim.model;
+  const State& state = sim.state;
+  Workspace& ws = sim.ws;
   FrameStats stats;
-  measure_state(model, state, ws, stats);
+  measure_state(sim.world, sim.inputs, state, ws, stats);
   Totals t;
   t.energy = stats.kinetic + stats.elastic;
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
@@ -51,19 +54,18 @@ TEST(BodyDynamics, SpinningDeformingFreeBodyConservesMomentaAndEnergy) {
   body.angular_velocity = Vec3(0.5, 1.5, 2.5);
   test::Simulation sim(accurate_free_space(body));
   const Model& model = sim.model;
-  Workspace& ws = sim.ws;
   State& state = sim.state;
   // Excite q_s (a1 stretched) and q_d (a bump at one node) so both deform while spinning.
   const BodyModel& b = model.bodies[0];
   state.v[6 + 1] = 0.4;
   state.q[7 + 6 + 3 * 10 + 2] = 0.05;
-  const Totals t0 = totals(model, state, ws);
+  const Totals t0 = totals(sim);
   ASSERT_GT(t0.energy, 1.0);
   Real max_rel_p = 0, max_rel_l = 0, max_rel_e = 0;
   for (int frame = 0; frame < 500; ++frame) {  // 10 s
-    FrameResult r = advance_frame(model, state, ws);
+    FrameResult r = advance_frame(sim);
     ASSERT_TRUE(r.ok) << r.message;
-    const Totals t = totals(model, state, ws);
+    const Totals t = totals(sim);
     max_rel_p = std::max(max_rel_p, (t.p - t0.p).norm() / t0.p.norm());
     max_rel_l = std::max(max_rel_l, (t.l - t0.l).norm() / t0.l.norm());
     max_rel_e = std::max(max_rel_e, std::abs(t.energy - t0.energy) / t0.energy);
@@ -106,12 +108,11 @@ TEST(BodyDynamics, GlobalDeformationImpulseReturnsToRestValue) {
   body.material.damping = 2.0;
   test::Simulation sim(accurate_free_space(body));
   const Model& model = sim.model;
-  Workspace& ws = sim.ws;
   State& state = sim.state;
   state.v[6 + 1] = 2.0;  // impulse on a1 (stretch along x)
   Real max_excursion = 0;
   for (int frame = 0; frame < 500; ++frame) {
-    ASSERT_TRUE(advance_frame(model, state, ws).ok);
+    ASSERT_TRUE(advance_frame(sim).ok);
     max_excursion = std::max(max_excursion, std::abs(state.q[7 + 1] - 1.0));
   }
   EXPECT_GT(max_excursion, 0.05);  // it really deformed
@@ -145,23 +146,22 @@ TEST(BodyDynamics, FirstOrderModelReachesEquilibrium) {
   south.damping = 0;
   scene.springs = {north, south};
   test::Simulation sim(scene);
-  const Model& model = sim.model;
   Workspace& ws = sim.ws;
   State& state = sim.state;
   // The speed of the very first substep: the springs' full pull against an undeformed body.
   State probe = state;
   int evaluations = 0;
-  advance_substep(model, probe, scene.solver.dt, ws, evaluations);
+  advance_substep(sim.world, sim.inputs, probe, scene.solver.dt, ws, evaluations);
   const Real first_speed = probe.v.norm();
   ASSERT_GT(first_speed, 1.0);
-  for (int frame = 0; frame < 30; ++frame) ASSERT_TRUE(advance_frame(model, state, ws).ok);
+  for (int frame = 0; frame < 30; ++frame) ASSERT_TRUE(advance_frame(sim).ok);
   // q-dot = (nu M)^+ (f_q - K q) has fallen by more than 1e4: the forces balance. (What remains,
   // ~1e-3 m/s and decaying, is the slow exchange between q_s and the part of q_d that looks like
   // a global deformation, whose velocity the mean-axis split holds at zero.)
   EXPECT_LT(state.v.norm(), 1e-4 * first_speed);
   // And the poles were really pulled apart (the springs did work against K).
   FrameStats stats;
-  measure_state(model, state, ws, stats);
+  measure_state(sim.world, sim.inputs, state, ws, stats);
   const Real height = ws.bodies[0].x[north.node].z() - ws.bodies[0].x[0].z();
   EXPECT_GT(height, 2.05);
   EXPECT_LT(height, 3.0);

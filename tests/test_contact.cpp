@@ -29,14 +29,14 @@ RunResult simulate(const Scene& scene, int frames) {
   RunResult run;
   bool touched = false;
   for (int f = 0; f < frames; ++f) {
-    const FrameResult r = advance_frame(sim.model, state, sim.ws);
+    const FrameResult r = advance_frame(sim);
     if (!r.ok) {
       run.ok = false;
       run.message = r.message;
       break;
     }
-    run.min_distance = std::min(run.min_distance, r.stats.min_distance);
-    touched = touched || r.stats.min_distance < 1e-6;
+    run.min_distance = std::min(run.min_distance, sim.stats.min_distance);
+    touched = touched || sim.stats.min_distance < 1e-6;
     if (touched) run.max_omega = std::max(run.max_omega, state.v.segment<3>(3).norm());
   }
   const Vec4 quat = state.q.segment<4>(3);
@@ -151,10 +151,10 @@ TEST(Contact, ExtremeElasticityAndFrictionStayOutsideAndBounded) {
       test::Simulation sim(scene);
       Real lowest = 1e300, fastest = 0;
       for (int f = 0; f < 150; ++f) {
-        const FrameResult r = advance_frame(sim.model, sim.state, sim.ws);
+        const FrameResult r = advance_frame(sim);
         ASSERT_TRUE(r.ok) << "a " << a << " beta " << beta << ": " << r.message;
-        lowest = std::min(lowest, r.stats.min_distance);
-        fastest = std::max(fastest, r.stats.kinetic);
+        lowest = std::min(lowest, sim.stats.min_distance);
+        fastest = std::max(fastest, sim.stats.kinetic);
       }
       EXPECT_GE(lowest, 0.0) << "a " << a << " beta " << beta;
       // Falling 2.8 m (centre 4 m to 1.2 m above the slope) at most: m g h = 2064 * 9.81 * 2.8.

@@ -76,9 +76,9 @@ TEST(MeshObstacle, ABallDroppedOnItStaysOnTopAndNeverInside) {
   test::Simulation sim(scene);
   Real lowest = 1e300;
   for (int f = 0; f < 250; ++f) {
-    const FrameResult r = advance_frame(sim.model, sim.state, sim.ws);
+    const FrameResult r = advance_frame(sim);
     ASSERT_TRUE(r.ok) << r.message;
-    lowest = std::min(lowest, r.stats.min_distance);
+    lowest = std::min(lowest, sim.stats.min_distance);
     if (f >= 150) {  // after 3 s it sits on the top face (z = 1), a ball of radius 1 above it
       EXPECT_GT(sim.state.q[2], 1.6);
       EXPECT_LT(sim.state.q[2], 2.1);

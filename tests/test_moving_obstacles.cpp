@@ -59,9 +59,9 @@ TEST(MovingObstacles, BallRidesARisingPlane) {
   test::Simulation sim(scene);
   Real worst_velocity_error = 0, worst_sink = 0, min_distance = 1e300;
   for (int f = 0; f < 200; ++f) {  // to 2.0 s
-    const FrameResult r = advance_frame(sim.model, sim.state, sim.ws);
+    const FrameResult r = advance_frame(sim);
     ASSERT_TRUE(r.ok) << r.message;
-    min_distance = std::min(min_distance, r.stats.min_distance);
+    min_distance = std::min(min_distance, sim.stats.min_distance);
     const Real t = sim.state.time;
     const Real plane_z = -kRadius + v * std::max(0.0, t - 0.2);
     worst_sink = std::max(worst_sink, plane_z + kRadius - sim.state.q[2]);
@@ -98,7 +98,7 @@ Scene box_hits_ball(DeformLevel level) {
 TEST(MovingObstacles, BoxGivesARestingBallItsSpeed) {
   test::Simulation sim(box_hits_ball(DeformLevel::rigid));
   for (int f = 0; f < 200; ++f) {  // to 2.0 s
-    const FrameResult r = advance_frame(sim.model, sim.state, sim.ws);
+    const FrameResult r = advance_frame(sim);
     ASSERT_TRUE(r.ok) << r.message;
   }
   // Measured: v = (1.0000, 0, 0) m/s, x = 1.235 m (the sampled sphere's nodes are met later
@@ -117,7 +117,7 @@ TEST(MovingObstacles, BoxGivesARestingBallItsSpeed) {
 TEST(MovingObstacles, BoxLaunchesADeformableBall) {
   test::Simulation sim(box_hits_ball(DeformLevel::local));
   for (int f = 0; f < 200; ++f) {
-    const FrameResult r = advance_frame(sim.model, sim.state, sim.ws);
+    const FrameResult r = advance_frame(sim);
     ASSERT_TRUE(r.ok) << r.message;
   }
   const Real speed = sim.state.v[0];
@@ -143,7 +143,7 @@ DragRun drag(Real friction) {
   test::Simulation sim(scene);
   DragRun run;
   for (int f = 0; f < 150; ++f) {  // to 1.5 s
-    const FrameResult r = advance_frame(sim.model, sim.state, sim.ws);
+    const FrameResult r = advance_frame(sim);
     EXPECT_TRUE(r.ok) << r.message;
     if (!r.ok) break;
     run.worst_excess =
@@ -177,7 +177,7 @@ TEST(MovingObstacles, RunsAreBitIdentical) {
   std::uint64_t hashes[2] = {0, 0};
   for (std::uint64_t& hash : hashes) {
     test::Simulation sim(scene);
-    for (int f = 0; f < 120; ++f) ASSERT_TRUE(advance_frame(sim.model, sim.state, sim.ws).ok);
+    for (int f = 0; f < 120; ++f) ASSERT_TRUE(advance_frame(sim).ok);
     hash = hash_state(sim.state);
   }
   EXPECT_EQ(hashes[0], hashes[1]);
@@ -205,9 +205,9 @@ TEST(MovingObstacles, PlacementVelocitiesAreTheTracksDerivatives) {
   std::vector<ObstacleModel> at, before, after;
   const Real h = 1e-6;
   for (const Real t : {0.3, 0.77, 1.4, 1.9}) {
-    place_obstacles(model, t, at);
-    place_obstacles(model, t - h, before);
-    place_obstacles(model, t + h, after);
+    place_obstacles(model, Inputs{}, t, at);
+    place_obstacles(model, Inputs{}, t - h, before);
+    place_obstacles(model, Inputs{}, t + h, after);
     const Vec3 velocity = (after[0].point - before[0].point) / (2 * h);
     EXPECT_LT((velocity - at[0].velocity).norm(), 1e-6) << t;
     // R-dot R^T = [omega]x.
@@ -222,7 +222,7 @@ TEST(MovingObstacles, PlacementVelocitiesAreTheTracksDerivatives) {
 TEST(MovingObstacles, SnapshotShowsTheObstacleWhereItIs) {
   test::Simulation sim(box_hits_ball(DeformLevel::rigid));
   const Snapshot at_start = make_snapshot(sim.model, sim.state, sim.inputs, sim.ws);
-  for (int f = 0; f < 50; ++f) ASSERT_TRUE(advance_frame(sim.model, sim.state, sim.ws).ok);
+  for (int f = 0; f < 50; ++f) ASSERT_TRUE(advance_frame(sim).ok);
   const Snapshot later = make_snapshot(sim.model, sim.state, sim.inputs, sim.ws);
   ASSERT_EQ(later.obstacles.size(), 1u);
   EXPECT_FLOAT_EQ(at_start.obstacles[0].point.x(), -2.0f);
@@ -310,10 +310,10 @@ SwatRun run_dragonfly(bool swat) {
   SwatRun run;
   const int frames = static_cast<int>(std::lround(scene.solver.duration * scene.solver.fps));
   for (int f = 0; f < frames; ++f) {
-    const FrameResult r = advance_frame(sim.model, sim.state, sim.ws);
+    const FrameResult r = advance_frame(sim);
     EXPECT_TRUE(r.ok) << r.message;
     if (!r.ok) break;
-    run.min_distance = std::min(run.min_distance, r.stats.min_distance);
+    run.min_distance = std::min(run.min_distance, sim.stats.min_distance);
     if (std::abs(sim.state.time - 4.2) < 0.5 / scene.solver.fps) {
       run.before = centre_of_mass(sim.model, sim.state);
     }

@@ -17,9 +17,9 @@
 #include "png_io.h"
 #include "renderer.h"
 #include "scene/scene_json.h"
+#include "sim/simulation.h"
 #include "sim/snapshot.h"
 #include "sim/tracks.h"
-#include "sim/world.h"
 
 namespace pbm {
 namespace {
@@ -112,18 +112,18 @@ Mask ball_mask(Renderer& renderer, Snapshot snapshot, const Camera& camera,
 TEST(Render, TheBallsPixelsFollowItDownTheImage) {
   OsmesaContext context;
   Renderer renderer(context.functions());
-  const Model model = build_model(load_scene(scene_path("jello-ball")));
-  const Inputs inputs;
-  Workspace ws;
-  init_workspace(model, inputs, ws);
-  State state = initial_state(model);
+  Simulation sim(load_scene(scene_path("jello-ball")));
+  const Model& model = sim.model;
+  const Inputs& inputs = sim.inputs;
+  Workspace& ws = sim.ws;
+  State& state = sim.state;
   const Camera camera = camera_from_scene(*model.scene.camera);
   RenderOptions options;
   options.width = 320;
   options.height = 240;
   options.shadows = false;
   const Mask at_0 = ball_mask(renderer, make_snapshot(model, state, inputs, ws), camera, options);
-  for (int f = 0; f < 15; ++f) ASSERT_TRUE(advance_frame(model, state, ws).ok);
+  for (int f = 0; f < 15; ++f) ASSERT_TRUE(advance_frame(sim).ok);
   const Mask at_15 = ball_mask(renderer, make_snapshot(model, state, inputs, ws), camera, options);
   // The ball is in the picture (removing it changes hundreds of pixels)...
   EXPECT_GT(at_0.count, 500);
@@ -145,19 +145,18 @@ long count_colour(const std::vector<unsigned char>& rgb, int r, int g, int b) {
 
 // The jello-ball at frame 0 from its scene camera, at 320x240: what the overlay tests draw on.
 struct JelloView {
-  OsmesaContext context;
-  Renderer renderer{context.functions()};
-  const Model model = build_model(load_scene(scene_path("jello-ball")));
-  Inputs inputs;
-  Workspace ws;
-  const Camera camera = camera_from_scene(*model.scene.camera);
-  RenderOptions options;
-  JelloView() {
-    init_workspace(model, inputs, ws);
+  explicit JelloView(const Scene& scene = load_scene(scene_path("jello-ball"))) : sim(scene) {
     options.width = 320;
     options.height = 240;
   }
-  Snapshot snapshot() { return make_snapshot(model, initial_state(model), inputs, ws); }
+  OsmesaContext context;
+  Renderer renderer{context.functions()};
+  Simulation sim;
+  const Camera camera = camera_from_scene(*sim.model.scene.camera);
+  RenderOptions options;
+  Snapshot snapshot() {
+    return make_snapshot(sim.model, initial_state(sim.model), sim.inputs, sim.ws);
+  }
   std::vector<unsigned char> draw(const Snapshot& snap) {
     renderer.render(snap, camera, options);
     std::vector<unsigned char> rgb;
@@ -169,13 +168,17 @@ struct JelloView {
 TEST(Render, SpringsAndTheWireframeAreDrawn) {
   JelloView view;
   const auto plain = view.draw(view.snapshot());
-  // A mouse spring from the top node to a point beside the ball: a yellow line with end points.
-  view.inputs.springs.push_back(
-      {0, view.model.bodies[0].tessellation.north_pole, Vec3(0.5, 0, 4.5), 10, 1});
-  const auto with_spring = view.draw(view.snapshot());
+  // A spring from the top node to a point beside the ball: a yellow line with end points.
+  Scene sprung = load_scene(scene_path("jello-ball"));
+  SpringDef spring;
+  spring.node = view.sim.model.bodies[0].tessellation.north_pole;
+  spring.target = Vec3(0.5, 0, 4.5);
+  spring.stiffness = 10;
+  sprung.springs.push_back(spring);
+  JelloView with(sprung);
+  const auto with_spring = with.draw(with.snapshot());
   EXPECT_EQ(count_colour(plain, 242, 217, 51), 0);
   EXPECT_GT(count_colour(with_spring, 242, 217, 51), 20);
-  view.inputs.springs.clear();
   view.options.wireframe = true;
   const auto wire = view.draw(view.snapshot());
   // The element edges darken part of the ball.
@@ -212,10 +215,10 @@ TEST(Render, CameraTracksMoveTheSceneCamera) {
   scene.tracks.push_back(track);
   const Model model = build_model(scene);
   Drive drive;
-  evaluate_drive(model, 0.0, drive);
+  evaluate_drive(model, Inputs{}, 0.0, drive);
   EXPECT_FLOAT_EQ(camera_from_drive(drive).position.x(), 1.0f);
   EXPECT_EQ(camera_from_drive(drive).target, camera_from_scene(*scene.camera).target);
-  evaluate_drive(model, 5.0, drive);
+  evaluate_drive(model, Inputs{}, 5.0, drive);
   EXPECT_FLOAT_EQ(camera_from_drive(drive).position.x(), -2.5f);  // halfway, linear keys
   // A camera track needs a camera to move.
   const std::string text = R"({"bodies": [{"material": {"mass": 1}}],

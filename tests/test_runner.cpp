@@ -52,9 +52,9 @@ Real centre_x(const RunnerCore& core) {
 
 // sum m x-dot of body 0.
 Vec3 linear_momentum(const Model& model, const State& state) {
-  const Inputs inputs;
+  const World world = make_world(model);
   Workspace ws;
-  init_workspace(model, inputs, ws);
+  init_workspace(world, ws);
   const BodyModel& body = model.bodies[0];
   const auto q = state.q.segment(body.q_offset, body.q_size);
   const auto v = state.v.segment(body.v_offset, body.v_size);

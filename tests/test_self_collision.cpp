@@ -131,7 +131,9 @@ SceneRun run_scene(const Scene& scene, int substeps, const Setup& setup = {}) {
   const BodyModel& body = sim.model.bodies[0];
   for (int k = 0; k < substeps; ++k) {
     int evaluations = 0;
-    r.ok = advance_substep(sim.model, sim.state, sim.model.solver.dt, sim.ws, evaluations) && r.ok;
+    r.ok = advance_substep(sim.world, sim.inputs, sim.state, sim.model.solver.dt, sim.ws,
+                           evaluations) &&
+           r.ok;
     const BodyCollisionStats& stats = sim.ws.body_collision_stats;
     if (!r.ok) break;
     r.proximity += stats.self.proximity_pairs;
@@ -286,7 +288,8 @@ TEST(SelfCollision, ImpulsesConserveTheBodysLinearMomentum) {
     record_step_start(sim.model.bodies, sim.state.q, sim.state.v, sim.state.time,
                       sim.model.solver.dt, options, cws.self);
     int evaluations = 0;
-    ASSERT_TRUE(advance_substep(sim.model, sim.state, sim.model.solver.dt, sim.ws, evaluations));
+    ASSERT_TRUE(advance_substep(sim.world, sim.inputs, sim.state, sim.model.solver.dt, sim.ws,
+                                evaluations));
     Real scale = 0;
     const Vec3 before = momentum(scale);
     BodyCollisionStats stats;
@@ -313,8 +316,8 @@ TEST(SelfCollision, RunsAreBitIdentical) {
   fling_right_half(c);
   for (int k = 0; k < 400; ++k) {
     int evaluations = 0;
-    ASSERT_TRUE(advance_substep(c.model, c.state, c.model.solver.dt, c.ws, evaluations));
-    if (k % 100 == 50) c.ws.body_collisions = BodyCollisionWorkspace(c.ws.body_collisions);
+    ASSERT_TRUE(advance_substep(c.world, c.inputs, c.state, c.model.solver.dt, c.ws, evaluations));
+    if (k % 100 == 50) c.ws.body_collisions = BodyCollisionWorkspace(*c.ws.body_collisions);
   }
   EXPECT_EQ(hash_state(c.state), a.hash);
 }

@@ -53,8 +53,7 @@ TEST(Tracks, SpringForceSaturatesAtItsLimit) {
   spring.max_force = 20.0;
   scene.springs.push_back(spring);
   test::Simulation sim(scene);
-  for (int frame = 0; frame < 15; ++frame)
-    ASSERT_TRUE(advance_frame(sim.model, sim.state, sim.ws).ok);
+  for (int frame = 0; frame < 15; ++frame) ASSERT_TRUE(advance_frame(sim).ok);
   const Real T = sim.state.time;
   const Vec3 velocity = sim.state.v.segment<3>(0);
   EXPECT_NEAR(velocity.x(), 20.0 * T / 10.0, 1e-3 * 20.0 * T / 10.0);

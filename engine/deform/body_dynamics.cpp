@@ -393,6 +393,14 @@ void resplit_velocities(const BodyModel& body, const Eigen::Ref<const VecX>& q, 
   for (int i = 0; i < n; ++i) v.segment<3>(sl.d_v + 3 * i) -= apply_P(body, ws, i, ws.gamma);
 }
 
+void restore_velocity_split(const BodyModel& body, const Eigen::Ref<const VecX>& q,
+                            Eigen::Ref<VecX> v, BodyWorkspace& ws) {
+  if (!body.has_local) return;
+  compute_body_kinematics(body, q, v, ws, false);
+  factor_generalized_mass(body, q, ws);
+  resplit_velocities(body, q, v, ws);
+}
+
 Vec3 recenter_displacements(const BodyModel& body, Eigen::Ref<VecX> q, Eigen::Ref<VecX> v) {
   if (!body.has_local) return Vec3::Zero();
   const int n = body.n_nodes();

@@ -108,6 +108,13 @@ void solve_body_dynamics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
 void resplit_velocities(const BodyModel& body, const Eigen::Ref<const VecX>& q, Eigen::Ref<VecX> v,
                         BodyWorkspace& ws);
 
+// After a substep: the mean-axis split's velocity form drifts between steps, so local bodies
+// restore it (kinematics of (q, v), the mass block at q, resplit_velocities); the stage with
+// obstacles does the same in resolve_penetrations (collide/rigid_contact.h), after its
+// projection. Other bodies have no split to restore.
+void restore_velocity_split(const BodyModel& body, const Eigen::Ref<const VecX>& q,
+                            Eigen::Ref<VecX> v, BodyWorkspace& ws);
+
 // The position counterpart of resplit_velocities for translation: moves the mass-weighted mean
 // of d into c (x_i unchanged exactly). The velocity condition alone is not integrable, so without
 // this, projections at contacts accumulate a translation in q_d and c leaves the body.

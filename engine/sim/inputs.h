@@ -1,4 +1,8 @@
-// Inputs: what a user does during play (DESIGN §1), read by step() and nothing else.
+// Inputs: what the user does during play that the Model does not hold yet (docs/architecture.md,
+// "Inputs"), a parameter of every step. Each input sets a track's value from a time on, exactly
+// as a step key of that track would: the runner records every input into the scene as that key,
+// so the frames computed live and the frames of the saved scene replayed (where the keys are
+// part of the Model) are bit-identical. A mouse drag is such an input (sim/runner.h).
 #pragma once
 
 #include <vector>
@@ -7,17 +11,14 @@
 
 namespace pbm {
 
-// The mouse spring of sec. 6.4: a spring-damper from a body node to a target point.
-struct MouseSpring {
-  int body = 0;
-  int node = 0;
-  Vec3 target = Vec3::Zero();  // [m], world
-  Real stiffness = 0;          // [N/m]
-  Real damping = 0;            // [N s/m]
+struct TrackInput {
+  int track = 0;   // index into Model::tracks (scene order)
+  Real time = 0;   // from when [s]
+  Real value = 0;  // what the track holds from then on
 };
 
 struct Inputs {
-  std::vector<MouseSpring> springs;
+  std::vector<TrackInput> tracks;  // at most one per track
 };
 
 }  // namespace pbm

@@ -133,6 +133,9 @@ Model build_model(const Scene& scene) {
   options.friction = scene.solver.body_friction;
   options.elasticity = scene.solver.body_elasticity;
   options.margin = scene.solver.collision_margin;
+  for (const std::string& note : model.constraints.notes) {
+    model.notes += (model.notes.empty() ? "" : "; ") + note;
+  }
   model.body_collisions.constrained.assign(model.bodies.size(), 0);
   for (const PointConstraintModel& c : model.constraints.points) {
     const int a = c.ends[0].body, b = c.ends[1].body;

@@ -50,6 +50,8 @@ struct Model {
   ConstraintSystemModel constraints;   // ch. 7
   BodyCollisionModel body_collisions;  // 5.2.2, from the solver's keys and the constraints
   int n_q = 0, n_v = 0;
+  // Warnings about the solvers for every frame's stats, '; '-separated (constraints.notes).
+  std::string notes;
 };
 
 // Throws pbm::Error (file, path) when the scene cannot be compiled.

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/bits.h"
 #include "core/error.h"
 #include "scene/scene_json.h"
 
@@ -16,11 +17,6 @@ namespace {
 
 using Json = nlohmann::ordered_json;  // keeps the scene's keys in their documented order
 using Clock = std::chrono::steady_clock;
-
-bool same_bits(const VecX& a, const VecX& b) {
-  return a.size() == b.size() &&
-         std::memcmp(a.data(), b.data(), sizeof(Real) * static_cast<std::size_t>(a.size())) == 0;
-}
 
 // "/bodies/0/material/w1" -> "bodies[0].material.w1": the path form pbm::Error uses (DESIGN §7).
 std::string path_of_pointer(const std::string& pointer) {
@@ -49,11 +45,13 @@ std::string target_track_name(int spring, int k) {
   return spring_path(spring) + ".target[" + std::to_string(k) + "]";
 }
 
-TrackDef* find_track(Scene& scene, const std::string& target) {
-  for (TrackDef& track : scene.tracks) {
-    if (track.target == target) return &track;
+// Index of the track driving `target` in scene.tracks (the Model's tracks have the same order),
+// or -1.
+int find_track(const Scene& scene, const std::string& target) {
+  for (std::size_t k = 0; k < scene.tracks.size(); ++k) {
+    if (scene.tracks[k].target == target) return static_cast<int>(k);
   }
-  return nullptr;
+  return -1;
 }
 
 }  // namespace
@@ -91,21 +89,18 @@ MouseSpringParameters mouse_spring_parameters(const Model& model, int body) {
 
 RunnerCore::RunnerCore(const Scene& scene, std::size_t cache_bytes)
     : scene_(std::make_shared<const Scene>(scene)),
-      model_(std::make_unique<Model>(build_model(*scene_))),
-      ws_(std::make_unique<Workspace>()),
-      state_(initial_state(*model_)),
+      sim_(std::make_unique<Simulation>(*scene_)),
       timeline_(cache_bytes) {
-  init_workspace(*model_, inputs_, *ws_);
-  measure_state(*model_, state_, *ws_, last_stats_);
-  timeline_.store(0, state_, last_stats_);
+  last_stats_ = sim_->stats;
+  timeline_.store(0, sim_->state, last_stats_);
 }
 
 int RunnerCore::last_frame() const {
-  return static_cast<int>(std::lround(model_->solver.duration * model_->solver.fps));
+  return static_cast<int>(std::lround(model().solver.duration * model().solver.fps));
 }
 
 Snapshot RunnerCore::snapshot() {
-  return make_snapshot(*model_, state_, inputs_, *ws_);
+  return make_snapshot(sim_->model, sim_->state, sim_->inputs, sim_->ws);
 }
 
 std::string RunnerCore::apply(const Command& command) {
@@ -186,14 +181,14 @@ std::string RunnerCore::handle(const EditScene& edit) {
 }
 
 std::string RunnerCore::handle(const SpringBegin& begin) {
-  const int n_bodies = static_cast<int>(model_->bodies.size());
+  const int n_bodies = static_cast<int>(model().bodies.size());
   if (begin.body < 0 || begin.body >= n_bodies) {
     return "mouse spring: no body " + std::to_string(begin.body) + " (the scene has " +
            std::to_string(n_bodies) + ")";
   }
-  const int n_nodes = model_->bodies[begin.body].n_nodes();
+  const int n_nodes = model().bodies[begin.body].n_nodes();
   if (begin.node < 0 || begin.node >= n_nodes) {
-    return "mouse spring: body '" + model_->bodies[begin.body].name + "' has no node " +
+    return "mouse spring: body '" + model().bodies[begin.body].name + "' has no node " +
            std::to_string(begin.node) + " (it has " + std::to_string(n_nodes) + ")";
   }
   if (!begin.target.allFinite()) return "mouse spring: the target is not finite";
@@ -203,8 +198,8 @@ std::string RunnerCore::handle(const SpringBegin& begin) {
       std::count_if(scene.springs.begin(), scene.springs.end(),
                     [](const SpringDef& s) { return s.name.rfind("drag ", 0) == 0; }));
   const int index = static_cast<int>(scene.springs.size());
-  const MouseSpringParameters p = mouse_spring_parameters(*model_, begin.body);
-  const Real t = state_.time;
+  const MouseSpringParameters p = mouse_spring_parameters(model(), begin.body);
+  const Real t = state().time;
   // Recorded as an ordinary spring of the scene (sec. 6.4), so that playing the timeline again,
   // or the saved file, reproduces the drag: it acts from now on, never on a frame already
   // computed, which therefore stay valid.
@@ -239,20 +234,37 @@ std::string RunnerCore::handle(const SpringMove& move) {
   if (active_spring_ < 0) return "mouse spring: no spring is being dragged";
   if (!move.target.allFinite()) return "mouse spring: the target is not finite";
   Scene scene = *scene_;
-  const Real t = state_.time;
+  const Real t = state().time;
+  std::array<int, 3> tracks{};
   for (int k = 0; k < 3; ++k) {
-    TrackDef* track = find_track(scene, target_track_name(active_spring_, k));
-    if (!track)
+    tracks[k] = find_track(scene, target_track_name(active_spring_, k));
+    if (tracks[k] < 0) {
       return "mouse spring: the scene no longer has " + target_track_name(active_spring_, k);
+    }
+    TrackDef& track = scene.tracks[static_cast<std::size_t>(tracks[k])];
     // Keys later than now belong to frames that are dropped with this move.
-    std::erase_if(track->keys, [t](const Keyframe& key) { return key.time > t; });
-    if (!track->keys.empty() && track->keys.back().time == t) {
-      track->keys.back().value = move.target[k];
+    std::erase_if(track.keys, [t](const Keyframe& key) { return key.time > t; });
+    if (!track.keys.empty() && track.keys.back().time == t) {
+      track.keys.back().value = move.target[k];
     } else {
-      track->keys.push_back({t, move.target[k]});
+      track.keys.push_back({t, move.target[k]});
     }
   }
-  return rebuild(std::move(scene));
+  // The same keys as inputs of the step: from t on they hold the target exactly as the recorded
+  // keys will once the drag ends and the scene is compiled (sim/inputs.h). The Model is not
+  // rebuilt.
+  std::vector<TrackInput>& inputs = sim_->inputs.tracks;
+  for (int k = 0; k < 3; ++k) {
+    std::erase_if(inputs, [&](const TrackInput& in) { return in.track == tracks[k]; });
+    inputs.push_back({tracks[k], t, move.target[k]});
+  }
+  scene_ = std::make_shared<const Scene>(std::move(scene));
+  ++revision_;
+  timeline_.drop_after(frame_);
+  // The frame start's measurement read the drive without these inputs (the guard's allowance
+  // uses the spring targets there).
+  sim_->ws.last_measured.valid = false;
+  return {};
 }
 
 std::string RunnerCore::handle(const SpringEnd&) {
@@ -267,7 +279,7 @@ void RunnerCore::release_spring() {
   if (s < 0 || s >= static_cast<int>(scene_->springs.size())) return;
   Scene scene = *scene_;
   SpringDef& spring = scene.springs[static_cast<std::size_t>(s)];
-  spring.t_end = std::max(state_.time, spring.t_begin);
+  spring.t_end = std::max(state().time, spring.t_begin);
   // Only the spring's end changed, and it lies at or after every cached frame the edit keeps:
   // this scene compiles whenever the current one does.
   rebuild(std::move(scene));
@@ -275,42 +287,41 @@ void RunnerCore::release_spring() {
 
 std::string RunnerCore::rebuild(Scene edited) {
   auto scene = std::make_shared<const Scene>(std::move(edited));
-  Model model;
+  std::unique_ptr<Simulation> sim;
   try {
-    model = build_model(*scene);
+    sim = std::make_unique<Simulation>(*scene);
   } catch (const Error& e) {
     return e.what();
   }
-  State start = initial_state(model);
   // Frames up to the current one stay valid when the edit changes neither where the run starts
-  // nor when frames fall (DESIGN §5: an edit at frame f invalidates the frames after f).
+  // nor when frames fall (docs/architecture.md: an edit at frame f invalidates the frames after
+  // f). The new workspace gives the same results as the old one would (determinism by
+  // construction): nothing but the State carries over.
   const State& old_start = *timeline_.find(0);
-  const bool same_start = model.solver.fps == model_->solver.fps &&
-                          same_bits(start.q, old_start.q) && same_bits(start.v, old_start.v);
-  // Same address: nothing outside holds the model, but the workspace is rebuilt from scratch
-  // because its caches (shape, mass factorization) are keyed on q alone, not on the model.
-  *model_ = std::move(model);
+  const bool same_start = sim->model.solver.fps == model().solver.fps &&
+                          same_bits(sim->state.q, old_start.q) &&
+                          same_bits(sim->state.v, old_start.v);
+  const int target = std::min(
+      frame_, static_cast<int>(std::lround(sim->model.solver.duration * sim->model.solver.fps)));
+  if (same_start) sim->state = sim_->state;
+  sim_ = std::move(sim);
   scene_ = std::move(scene);
   ++revision_;
-  ws_ = std::make_unique<Workspace>();
-  init_workspace(*model_, inputs_, *ws_);
-  const int target = std::min(frame_, last_frame());
   if (same_start) {
     timeline_.drop_after(target);
     go_to(target);
   } else {
     timeline_.clear();
-    state_ = std::move(start);
     frame_ = 0;
-    measure_state(*model_, state_, *ws_, last_stats_);
-    timeline_.store(0, state_, last_stats_);
+    last_stats_ = sim_->stats;
+    timeline_.store(0, sim_->state, last_stats_);
     go_to(target);
   }
   return {};
 }
 
 bool RunnerCore::advance() {
-  FrameResult result = advance_frame(*model_, state_, *ws_);
+  FrameResult result = advance_frame(*sim_);
   if (!result.ok) {
     // DESIGN §6: the guard gave up; the state is still that of frame_, never a NaN frame.
     message_ = "frame " + std::to_string(frame_ + 1) + ": " + result.message;
@@ -318,8 +329,8 @@ bool RunnerCore::advance() {
     return false;
   }
   ++frame_;
-  last_stats_ = std::move(result.stats);
-  timeline_.store(frame_, state_, last_stats_);
+  last_stats_ = sim_->stats;
+  timeline_.store(frame_, sim_->state, last_stats_);
   return true;
 }
 
@@ -332,11 +343,9 @@ bool RunnerCore::step_forward() {
 }
 
 void RunnerCore::restore(int frame) {
-  state_ = *timeline_.find(frame);
+  sim_->state = *timeline_.find(frame);
   last_stats_ = *timeline_.stats(frame);
   frame_ = frame;
-  // advance_frame reuses the last frame's measurement only for the state it measured.
-  ws_->last_measured.valid = false;
 }
 
 void RunnerCore::go_to(int frame) {

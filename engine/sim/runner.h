@@ -21,6 +21,7 @@
 
 #include "scene/scene.h"
 #include "sim/model.h"
+#include "sim/simulation.h"
 #include "sim/snapshot.h"
 #include "sim/state.h"
 #include "sim/timeline.h"
@@ -50,13 +51,16 @@ struct EditScene {
   std::string pointer;
   std::string value_json;
 };
-// The mouse spring of sec. 6.4, recorded into the scene as it is applied so that playback (and
-// a saved file) reproduce it: begin adds a SpringDef from `node` of `body` to `target`, with a
-// stiffness ramped in over kSpringRampSeconds, a damping and a force limit sized on the body's
-// mass, its damping and the time step (mouse_spring_parameters), and three `springs[i].target[k]`
-// tracks with step interpolation. Move adds a key at the current time (or replaces the key there);
-// End sets t_end to the current time. Each drops the cached frames after the current one. A Begin
-// while another spring is dragged ends that one first.
+// The mouse spring of sec. 6.4: one mechanism, a scene spring whose target tracks the drag
+// writes, recorded into the scene as it is applied so that playback (and a saved file) reproduce
+// it. Begin adds a SpringDef from `node` of `body` to `target`, with a stiffness ramped in over
+// kSpringRampSeconds, a damping and a force limit sized on the body's mass, its damping and the
+// time step (mouse_spring_parameters), and three `springs[i].target[k]` tracks with step
+// interpolation, and compiles the scene. Move records a key at the current time (or replaces the
+// key there) into the scene and sets the same values as Inputs of the step (sim/inputs.h), which
+// act exactly as those keys: a move compiles nothing. End sets t_end to the current time and
+// compiles the scene with every key recorded. Each drops the cached frames after the current
+// one. A Begin while another spring is dragged ends that one first.
 struct SpringBegin {
   int body = 0;
   int node = 0;
@@ -85,7 +89,7 @@ class RunnerCore {
  public:
   // Throws pbm::Error when the scene does not compile.
   explicit RunnerCore(const Scene& scene, std::size_t cache_bytes = std::size_t{512} << 20);
-  // The workspace's callbacks hold the addresses of the model and the inputs.
+  // The simulation's world holds its model's address.
   RunnerCore(const RunnerCore&) = delete;
   RunnerCore& operator=(const RunnerCore&) = delete;
 
@@ -103,8 +107,9 @@ class RunnerCore {
   const Scene& scene() const { return *scene_; }
   std::shared_ptr<const Scene> shared_scene() const { return scene_; }
   std::uint64_t scene_revision() const { return revision_; }
-  const Model& model() const { return *model_; }
-  const State& state() const { return state_; }
+  const Model& model() const { return sim_->model; }
+  const State& state() const { return sim_->state; }
+  const Inputs& inputs() const { return sim_->inputs; }
   const Timeline& timeline() const { return timeline_; }
   const FrameStats& last_stats() const { return last_stats_; }
   Snapshot snapshot();
@@ -129,10 +134,7 @@ class RunnerCore {
 
   std::shared_ptr<const Scene> scene_;
   std::uint64_t revision_ = 0;
-  std::unique_ptr<Model> model_;
-  Inputs inputs_;
-  std::unique_ptr<Workspace> ws_;
-  State state_;
+  std::unique_ptr<Simulation> sim_;  // model, world, workspace, state and the drag's inputs
   Timeline timeline_;
   FrameStats last_stats_;
   int frame_ = 0;

@@ -25,7 +25,7 @@ Snapshot make_snapshot(const Model& model, const State& state, const Inputs& inp
                        Workspace& ws) {
   Snapshot snap;
   snap.time = state.time;
-  evaluate_drive(model, state.time, ws.drive);
+  evaluate_drive(model, inputs, state.time, ws.drive);
   snap.bodies.resize(model.bodies.size());
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     const BodyModel& body = model.bodies[b];
@@ -65,12 +65,6 @@ Snapshot make_snapshot(const Model& model, const State& state, const Inputs& inp
     if (state.time < spring.t_begin || state.time > spring.t_end) continue;
     snap.springs.push_back({ws.bodies[spring.body].x[spring.node].cast<float>(),
                             ws.drive.spring_target[s].cast<float>()});
-  }
-  for (const MouseSpring& spring : inputs.springs) {
-    if (spring.body < 0 || spring.body >= static_cast<int>(model.bodies.size())) continue;
-    const auto& x = ws.bodies[spring.body].x;
-    if (spring.node < 0 || spring.node >= static_cast<int>(x.size())) continue;
-    snap.springs.push_back({x[spring.node].cast<float>(), spring.target.cast<float>()});
   }
   // Where each end of a constraint is now (the kinematics above are current): a node, a point
   // fixed in the body frame, or a world anchor.

@@ -17,6 +17,27 @@ Real evaluate_track_rate(const TrackModel& track, Real t) {
 
 namespace {
 
+const TrackInput* input_for(const Inputs& inputs, int k, Real t) {
+  for (const TrackInput& input : inputs.tracks) {
+    if (input.track == k && t >= input.time) return &input;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+Real track_value(const Model& model, const Inputs& inputs, int k, Real t) {
+  if (const TrackInput* input = input_for(inputs, k, t)) return input->value;
+  return evaluate_track(model.tracks[static_cast<std::size_t>(k)], t);
+}
+
+Real track_rate(const Model& model, const Inputs& inputs, int k, Real t) {
+  if (input_for(inputs, k, t)) return 0;
+  return evaluate_track_rate(model.tracks[static_cast<std::size_t>(k)], t);
+}
+
+namespace {
+
 // exp([r]x) and the left Jacobian J_l(r) = I + (1 - cos a) / a^2 [r]x + (a - sin a) / a^3 [r]x^2,
 // a = |r|, which maps r-dot to the world angular velocity of exp([r]x) R0.
 void rotation_and_jacobian(const Vec3& r, Mat3& R, Mat3& J) {
@@ -38,7 +59,8 @@ void rotation_and_jacobian(const Vec3& r, Mat3& R, Mat3& J) {
 
 }  // namespace
 
-void place_obstacles(const Model& model, Real t, std::vector<ObstacleModel>& obstacles) {
+void place_obstacles(const Model& model, const Inputs& inputs, Real t,
+                     std::vector<ObstacleModel>& obstacles) {
   obstacles.resize(model.obstacles.size());
   for (std::size_t o = 0; o < model.obstacles.size(); ++o) {
     const ObstacleModel& source = model.obstacles[o];
@@ -47,14 +69,15 @@ void place_obstacles(const Model& model, Real t, std::vector<ObstacleModel>& obs
     if (!source.moving) continue;
     Vec3 r = Vec3::Zero(), r_dot = Vec3::Zero();
     bool rotates = false;
-    for (const TrackModel& track : model.tracks) {
+    for (int k = 0; k < static_cast<int>(model.tracks.size()); ++k) {
+      const TrackModel& track = model.tracks[static_cast<std::size_t>(k)];
       if (track.object != static_cast<int>(o)) continue;
       if (track.target == TrackTarget::obstacle_point) {
-        placed.point[track.index] = evaluate_track(track, t);
-        placed.velocity[track.index] = evaluate_track_rate(track, t);
+        placed.point[track.index] = track_value(model, inputs, k, t);
+        placed.velocity[track.index] = track_rate(model, inputs, k, t);
       } else if (track.target == TrackTarget::obstacle_rotation) {
-        r[track.index] = evaluate_track(track, t);
-        r_dot[track.index] = evaluate_track_rate(track, t);
+        r[track.index] = track_value(model, inputs, k, t);
+        r_dot[track.index] = track_rate(model, inputs, k, t);
         rotates = true;
       }
     }
@@ -67,7 +90,7 @@ void place_obstacles(const Model& model, Real t, std::vector<ObstacleModel>& obs
   }
 }
 
-void evaluate_drive(const Model& model, Real t, Drive& drive) {
+void evaluate_drive(const Model& model, const Inputs& inputs, Real t, Drive& drive) {
   drive.gravity = model.gravity;
   drive.q_s0.resize(model.bodies.size());
   for (std::size_t b = 0; b < model.bodies.size(); ++b) drive.q_s0[b] = model.bodies[b].q_s0;
@@ -83,9 +106,14 @@ void evaluate_drive(const Model& model, Real t, Drive& drive) {
     drive.camera_up = model.scene.camera->up;
     drive.camera_fov = model.scene.camera->fov;
   }
-  place_obstacles(model, t, drive.obstacles);
-  for (const TrackModel& track : model.tracks) {
-    const Real value = evaluate_track(track, t);
+  place_obstacles(model, inputs, t, drive.obstacles);
+  for (int k = 0; k < static_cast<int>(model.tracks.size()); ++k) {
+    const TrackModel& track = model.tracks[static_cast<std::size_t>(k)];
+    if (track.target == TrackTarget::obstacle_point ||
+        track.target == TrackTarget::obstacle_rotation) {
+      continue;  // place_obstacles
+    }
+    const Real value = track_value(model, inputs, k, t);
     switch (track.target) {
       case TrackTarget::body_rest_parameter:
         drive.q_s0[track.object][track.index] = value;
@@ -110,7 +138,7 @@ void evaluate_drive(const Model& model, Real t, Drive& drive) {
         break;
       case TrackTarget::obstacle_point:
       case TrackTarget::obstacle_rotation:
-        break;  // place_obstacles
+        break;
     }
   }
 }

@@ -1,8 +1,10 @@
-// Timeline tracks (DESIGN §5): keyframed values evaluated at a time, and the values they drive.
+// Timeline tracks (docs/architecture.md, "Timeline"): keyframed values evaluated at a time, with
+// the user's inputs of the moment (sim/inputs.h), and the values they drive.
 #pragma once
 
 #include <vector>
 
+#include "sim/inputs.h"
 #include "sim/model.h"
 
 namespace pbm {
@@ -29,13 +31,20 @@ struct Drive {
   std::vector<ObstacleModel> obstacles;
 };
 
-void evaluate_drive(const Model& model, Real t, Drive& drive);
+// The value of model.tracks[k] at time t and its rate: the track's keys, unless an input set it
+// at or before t (then the input's value, rate 0, as a step key).
+Real track_value(const Model& model, const Inputs& inputs, int k, Real t);
+Real track_rate(const Model& model, const Inputs& inputs, int k, Real t);
+
+// Everything the tracks drive at time t. No allocation once `drive` has the model's sizes.
+void evaluate_drive(const Model& model, const Inputs& inputs, Real t, Drive& drive);
 
 // Only the obstacles of evaluate_drive: `obstacles` becomes the model's, placed at time t.
 // A point track sets the point and its velocity from the track's rate; rotation tracks give the
 // rotation vector r(t) (world frame, about the point), R(t) = exp([r]x) R_scene, and the angular
 // velocity omega = J_l(r) r-dot (J_l the left Jacobian of SO(3)). A plane's normal turns with R.
 // No allocation once `obstacles` has the model's size.
-void place_obstacles(const Model& model, Real t, std::vector<ObstacleModel>& obstacles);
+void place_obstacles(const Model& model, const Inputs& inputs, Real t,
+                     std::vector<ObstacleModel>& obstacles);
 
 }  // namespace pbm

@@ -1,0 +1,46 @@
+// What a frame cost and what it measured: the stability guard's energies, every stage's and
+// every subsystem's wall time, per-body and per-constraint numbers. Written by advance_frame
+// (sim/world.h) into a FrameStats the caller keeps, so a step allocates nothing.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "collide/body_collisions.h"
+#include "core/types.h"
+#include "sim/step_stage.h"
+
+namespace pbm {
+
+struct BodyFrameStats {
+  VecX q_s;                       // current global parameters (n_shape)
+  Real kinetic = 0, elastic = 0;  // [J]; elastic includes the obstacles' push (5.11)
+  Real potential = 0;             // gravity [J]
+  Vec3 position = Vec3::Zero();   // q_c [m]
+};
+
+struct FrameStats {
+  Real time = 0;                                 // of the state measured [s]
+  double wall_seconds = 0;                       // the whole frame, guard and retries included
+  int substeps = 0;                              // of the accepted attempt
+  int retries = 0;                               // halvings of the substep the guard needed
+  int evaluations = 0;                           // rate evaluations of the accepted attempt
+  Real kinetic = 0, elastic = 0, potential = 0;  // totals [J]
+  Real hinge_energy = 0;          // the hinges' rotational springs, part of `elastic` [J]
+  Real min_distance = 1e300;      // min signed distance of any node to any obstacle after the frame
+  int contacts = 0;               // touching nodes after the last substep (State::contact_nodes)
+  Real constraint_violation = 0;  // max_l |C_l| after the frame [m] (ch. 7; 0 without any)
+  // |C_l| of each point constraint l of ConstraintSystemModel::points [m] (its `source` names the
+  // scene constraint; a hinge has two).
+  VecX constraint_violations;
+  std::array<double, kStageCount> stage_seconds{};          // by StepStage
+  std::array<double, kSubsystemCount> subsystem_seconds{};  // by SubsystemId
+  std::vector<BodyFrameStats> bodies;
+  BodyCollisionStats body_collisions;  // of the frame's last substep
+  // Warnings about the model's solvers, '; '-separated (a constraint loop's dense fallback,
+  // Baumgarte gains too stiff for dt): empty when all is well.
+  std::string notes;
+};
+
+}  // namespace pbm

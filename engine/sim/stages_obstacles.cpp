@@ -1,0 +1,70 @@
+#include "sim/stages_obstacles.h"
+
+#include <algorithm>
+
+#include "collide/rigid_contact.h"
+
+namespace pbm::stages {
+
+bool obstacles_present(const Model& model) {
+  return !model.obstacles.empty();
+}
+
+void obstacle_forces(const RateContext& c) {
+  for (std::size_t b = 0; b < c.model.bodies.size(); ++b) {
+    c.ws.contacts += add_contact_forces(c.ws.drive.obstacles, c.model.bodies[b], c.ws.bodies[b]);
+  }
+}
+
+void obstacle_collisions(const SubstepContext& c) {
+  // Obstacles where their tracks put them at the step's end, the time of the positions being
+  // resolved (the rest of the drive stays at the last evaluation's time).
+  place_obstacles(c.model, c.inputs, c.state.time, c.ws.drive.obstacles);
+  for (std::size_t b = 0; b < c.model.bodies.size(); ++b) {
+    const BodyModel& body = c.model.bodies[b];
+    resolve_penetrations(c.ws.drive.obstacles, body, body_q(body, c.state.q),
+                         body_v(body, c.state.v), c.ws.bodies[b]);
+  }
+}
+
+void measure_obstacles(const Model& model, const State& state, Workspace& ws, FrameStats& stats) {
+  (void)state;
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    BodyWorkspace& bw = ws.bodies[b];
+    stats.bodies[b].elastic += contact_potential_energy(ws.drive.obstacles, model.bodies[b], bw);
+    stats.min_distance =
+        std::min(stats.min_distance, min_obstacle_distance(ws.drive.obstacles, bw));
+  }
+}
+
+// Kinetic energy moving obstacles may give the bodies in a frame from t0 to t1 [J]. An obstacle
+// is infinitely massive: a body it meets at surface speed w leaves with up to 2 w (an elastic
+// bounce, 5.11), so every body may gain 0.5 m (2 w)^2 with w the fastest surface point of any
+// obstacle at the frame's start, middle or end. The surface speed is |v| + |omega| times the
+// obstacle's reach from its point. 0 when nothing moves.
+Real obstacle_energy_allowance(const Model& model, const Inputs& inputs, const State& state,
+                               Real t_end, Workspace& ws) {
+  bool any = false;
+  for (const ObstacleModel& o : model.obstacles) any = any || o.moving;
+  if (!any) return 0;
+  const Real t0 = state.time;
+  Real w = 0;
+  for (const Real t : {t0, 0.5 * (t0 + t_end), t_end}) {
+    place_obstacles(model, inputs, t, ws.placed);
+    for (const ObstacleModel& o : ws.placed) {
+      if (!o.moving) continue;
+      Real reach = 0.5 * o.size.norm();
+      if (o.kind == ObstacleKind::box) reach = o.half_extents.norm();
+      if (o.kind == ObstacleKind::mesh) {
+        const Vec3 centre = 0.5 * (o.mesh->lower + o.mesh->upper);
+        reach = (o.mesh->upper - o.mesh->lower).norm() + (o.mesh->position - centre).norm();
+      }
+      w = std::max(w, o.velocity.norm() + o.angular_velocity.norm() * reach);
+    }
+  }
+  Real mass = 0;
+  for (const BodyModel& body : model.bodies) mass += body.mass;
+  return 0.5 * mass * (2 * w) * (2 * w);
+}
+
+}  // namespace pbm::stages

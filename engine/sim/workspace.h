@@ -1,0 +1,52 @@
+// Workspace: every subsystem's scratch, sized for one Model by init_workspace (sim/world.h).
+// Nothing in it changes a later frame (docs/architecture.md, "Determinism"): it may be thrown
+// away and rebuilt at any time, and the next frame is bit-identical. What does carry from one
+// step to the next lives in State.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "collide/body_collisions.h"
+#include "constrain/constraint_forces.h"
+#include "deform/body_workspace.h"
+#include "integrate/integrators.h"
+#include "sim/frame_stats.h"
+#include "sim/state.h"
+#include "sim/step_stage.h"
+#include "sim/tracks.h"
+
+namespace pbm {
+
+struct Workspace {
+  // Bodies (deform/): per-body dynamics and contact scratch; the velocities first-order bodies
+  // (3.51) solved for in the last rate evaluation (n_v).
+  std::vector<BodyWorkspace> bodies;
+  VecX first_order_velocity;
+  // The tracks' values at the time of the last evaluation (rates, measurement, snapshot), and at
+  // a frame's end for the guard.
+  Drive drive, end_drive;
+  std::vector<ObstacleModel> placed;  // obstacles placed at other times (the guard's allowance)
+  IntegratorWorkspace integrator;
+  // Present only when the scene has the subsystem (docs/architecture.md: a scene pays only for
+  // what it uses).
+  std::optional<ConstraintWorkspace> constraints;
+  std::optional<BodyCollisionWorkspace> body_collisions;
+  BodyCollisionStats body_collision_stats;  // of the last substep
+  int contacts = 0;  // touching nodes counted in the substep under way (-> State::contact_nodes)
+  StageClock clock;
+  // advance_frame's own: the frame's start (its retry point) and the guard's measurements.
+  State frame_start;
+  FrameStats before, after;
+  // The measurement that ended the last frame, and the state it measured: the next frame starts
+  // from it unless the state was changed in between (a seek, an edit). A cache: equal to what
+  // measuring that state again gives.
+  struct Measured {
+    bool valid = false;
+    Real time = 0;
+    VecX q, v;
+    FrameStats stats;
+  } last_measured;
+};
+
+}  // namespace pbm
