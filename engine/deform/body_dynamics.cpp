@@ -46,11 +46,17 @@ VecX generalized_from_node(const BodyModel& body, const BodyWorkspace& ws, int i
   return out;
 }
 
-VecX gauge_direction(const VecX& q_s) {
-  VecX n = VecX::Zero(q_s.size());
+void gauge_direction(const VecX& q_s, VecX& n) {
+  n.setZero(q_s.size());
   n[0] = q_s[0];
   n.segment<3>(1) = -q_s.segment<3>(1);
-  return n.normalized();
+  n.normalize();  // the same division by |n| as normalized()
+}
+
+VecX gauge_direction(const VecX& q_s) {
+  VecX n;
+  gauge_direction(q_s, n);
+  return n;
 }
 
 void resize_workspace(const BodyModel& body, BodyWorkspace& ws) {
@@ -78,6 +84,14 @@ void resize_workspace(const BodyModel& body, BodyWorkspace& ws) {
   ws.sample_v_stamp.assign(body.sample_grid_v.size(), 0);
   ws.sample_stamp = 0;
   ws.contact_generalized.setZero(k);
+  ws.q_s_dot.setZero(body.n_s);
+  ws.q_plus.setZero(body.n_s);
+  ws.q_minus.setZero(body.n_s);
+  ws.gauge.setZero(body.n_s);
+  ws.gauge_scaled.setZero(body.n_s);
+  ws.shape_scratch.setZero(body.n_s);
+  ws.mass_pJ_a.setZero(body.n_s);
+  ws.mass_pJ_b.setZero(body.n_s);
   ws.surface_distance.assign(n, 0.0);
   ws.pressing.clear();
   ws.pressing.reserve(3 * 2 * static_cast<std::size_t>(n));
@@ -87,7 +101,7 @@ void resize_workspace(const BodyModel& body, BodyWorkspace& ws) {
   ws.penetrating.reserve(static_cast<std::size_t>(n));
   ws.K_q.setZero(body.has_local ? 3 * n : 0);
   ws.A.setZero(k, k);
-  ws.A_eigen = Eigen::SelfAdjointEigenSolver<MatX>(k);
+  ws.A_eigen.reserve(k);
   ws.A_inverse_eigenvalues.setZero(k);
   ws.A_tmp.setZero(k);
   ws.r_g.setZero(k);
@@ -171,9 +185,10 @@ void compute_body_kinematics(const BodyModel& body, const Eigen::Ref<const VecX>
   // J-dot q_s-dot: exact for the superquadric; for the deformed shapes a second difference of s
   // along q_s-dot, h keeping h*q_s-dot ~ 1e-4 so the truncation (h^2) and rounding (eps/h^2)
   // errors both stay near 1e-8 relative.
-  VecX q_s_dot;
+  VecX& q_s_dot = ws.q_s_dot;
   Real h = 0;
-  VecX q_plus, q_minus;
+  VecX& q_plus = ws.q_plus;
+  VecX& q_minus = ws.q_minus;
   if (body.n_s > 0) {
     q_s_dot = v.segment(sl.s_v, body.n_s);
     const Real vmax = q_s_dot.cwiseAbs().maxCoeff();
@@ -275,7 +290,10 @@ void factor_generalized_mass(const BodyModel& body, const Eigen::Ref<const VecX>
     // M_theta s = sum m p~ J: row r of p x (m J_k) is p_{r+1} mJ_{r+2} - p_{r+2} mJ_{r+1}.
     for (int r = 0; r < 3; ++r) {
       const int a = (r + 1) % 3, b = (r + 2) % 3;
-      mpJ.row(r) = (component(b) * coordinate(a) - component(a) * coordinate(b)).transpose();
+      // Each product into its own scratch, as Eigen would into temporaries, without allocating.
+      ws.mass_pJ_a.noalias() = component(b) * coordinate(a);
+      ws.mass_pJ_b.noalias() = component(a) * coordinate(b);
+      mpJ.row(r) = (ws.mass_pJ_a - ws.mass_pJ_b).transpose();
     }
     JtJ.noalias() = ws.mass_Jt * ws.Jt.transpose();  // M_ss = sum m J^T J
   }
@@ -293,8 +311,10 @@ void factor_generalized_mass(const BodyModel& body, const Eigen::Ref<const VecX>
     A.block(6, 6, ns, ns) = JtJ;  // M_ss
     A.block(6, 6, ns, ns).diagonal() += body.parameter_inertia_floor;
     if (ns >= 4) {
-      const VecX n_gauge = gauge_direction(ws.q_s);
-      A.block(6, 6, ns, ns).noalias() += body.parameter_inertia * n_gauge * n_gauge.transpose();
+      VecX& n_gauge = ws.gauge;
+      gauge_direction(ws.q_s, n_gauge);
+      ws.gauge_scaled = body.parameter_inertia * n_gauge;
+      A.block(6, 6, ns, ns).noalias() += ws.gauge_scaled * n_gauge.transpose();
     }
   }
   ws.A_eigen.compute(A);
@@ -343,14 +363,15 @@ void solve_body_dynamics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
   ws.r_g += ws.contact_generalized;
   if (ns > 0) {
     // Global elastic force (3.33) and the damping of the parameter inertia.
-    const VecX q_s = q.segment(sl.s_q, ns);
+    const auto q_s = q.segment(sl.s_q, ns);
     ws.r_g.tail(ns) -= body.k_s.cwiseProduct(q_s - ws.q_s_rest);
     if (second) {
       ws.r_g.tail(ns) -=
           body.damping * body.parameter_inertia_floor.cwiseProduct(v.segment(sl.s_v, ns));
     }
     if (second && ns >= 4) {
-      const VecX n_gauge = gauge_direction(ws.q_s);
+      VecX& n_gauge = ws.gauge;
+      gauge_direction(ws.q_s, n_gauge);
       ws.r_g.tail(ns) -=
           body.damping * body.parameter_inertia * n_gauge.dot(v.segment(sl.s_v, ns)) * n_gauge;
     }
@@ -432,10 +453,12 @@ BodyEnergy compute_body_energy(const BodyModel& body, const Eigen::Ref<const Vec
     const auto q_s_dot = v.segment(sl.s_v, body.n_s);
     e.kinetic += 0.5 * q_s_dot.dot(body.parameter_inertia_floor.cwiseProduct(q_s_dot));
     if (body.n_s >= 4) {
-      const Real rate = gauge_direction(ws.q_s).dot(q_s_dot);
+      gauge_direction(ws.q_s, ws.gauge);
+      const Real rate = ws.gauge.dot(q_s_dot);
       e.kinetic += 0.5 * body.parameter_inertia * rate * rate;
     }
-    const VecX dq = q.segment(sl.s_q, body.n_s) - ws.q_s_rest;
+    VecX& dq = ws.shape_scratch;
+    dq = q.segment(sl.s_q, body.n_s) - ws.q_s_rest;
     e.elastic += 0.5 * dq.dot(body.k_s.cwiseProduct(dq));
   }
   if (body.has_local) {

@@ -129,6 +129,7 @@ VecX generalized_from_node(const BodyModel& body, const BodyWorkspace& ws, int i
 
 // Unit direction of q_s along which the reference shape does not change (see above).
 VecX gauge_direction(const VecX& q_s);
+void gauge_direction(const VecX& q_s, VecX& n);  // into n, allocation-free once n is sized
 
 // x = A^+ y (pseudo-inverse on A's range), after factor_generalized_mass.
 void solve_generalized_mass(BodyWorkspace& ws, const VecX& y, VecX& x);

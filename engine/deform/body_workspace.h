@@ -5,8 +5,7 @@
 
 #include <vector>
 
-#include <Eigen/Eigenvalues>
-
+#include "core/symmetric_eigen.h"
 #include "core/types.h"
 #include "deform/body_model.h"
 #include "deform/superquadric.h"
@@ -60,16 +59,20 @@ struct BodyWorkspace {
   std::vector<SignedPowers> sample_u_powers, sample_v_powers;
   std::vector<unsigned> sample_u_stamp, sample_v_stamp;
   unsigned sample_stamp = 0;
-  VecX K_q;  // K_dd q_d, body frame (3 n_nodes)
-  MatX A;    // k x k mass block of the generalized rigid+global coordinates
-  Eigen::SelfAdjointEigenSolver<MatX> A_eigen;  // A = V diag(lambda) V^T
-  VecX A_inverse_eigenvalues;                   // 1 / lambda on A's range, 0 on its null space
-  VecX A_tmp;                                   // k scratch
-  VecX r_g, b, gamma, alpha;                    // k-vectors
-  MatX mass_J, mass_pJ;                         // sum m J_i, sum m p~_i J_i (3 x n_s)
-  MatX mass_JtJ;                                // sum m J_i^T J_i (n_s x n_s)
-  VecX node_mass_3;                             // node masses repeated per coordinate (3 n_nodes)
-  MatX mass_Jt;                                 // Jt diag(node_mass_3), n_s x 3 n_nodes
+  VecX K_q;                       // K_dd q_d, body frame (3 n_nodes)
+  MatX A;                         // k x k mass block of the generalized rigid+global coordinates
+  SymmetricEigenSolver A_eigen;   // A = V diag(lambda) V^T
+  VecX A_inverse_eigenvalues;     // 1 / lambda on A's range, 0 on its null space
+  VecX A_tmp;                     // k scratch
+  VecX r_g, b, gamma, alpha;      // k-vectors
+  MatX mass_J, mass_pJ;           // sum m J_i, sum m p~_i J_i (3 x n_s)
+  MatX mass_JtJ;                  // sum m J_i^T J_i (n_s x n_s)
+  VecX node_mass_3;               // node masses repeated per coordinate (3 n_nodes)
+  MatX mass_Jt;                   // Jt diag(node_mass_3), n_s x 3 n_nodes
+  VecX mass_pJ_a, mass_pJ_b;      // n_s: the two products of a row of mass_pJ
+  VecX q_s_dot, q_plus, q_minus;  // n_s: q_s-dot and q_s +- h q_s-dot (kinematics)
+  VecX gauge, gauge_scaled;       // n_s: the gauge direction n and eta n
+  VecX shape_scratch;             // n_s
   bool kinematics_valid = false;
   // s and J depend on q_s alone: they are reused while q_s is bitwise unchanged (the contact
   // pass and the next step's first evaluation see the q_s the integrator produced).

@@ -170,7 +170,6 @@ void measure_state(const World& world, const Inputs& inputs, const State& state,
   stats.min_distance = 1e300;
   stats.hinge_energy = 0;
   stats.constraint_violation = 0;
-  stats.constraint_violations.resize(0);
   stats.bodies.resize(model.bodies.size());
   evaluate_drive(model, inputs, state.time, ws.drive);
   for (const Subsystem* subsystem : world.subsystems) {
