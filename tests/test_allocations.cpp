@@ -107,7 +107,7 @@ TEST(Allocations, RestingJelloBallStepsWithoutAllocating) {
 }
 
 TEST(Allocations, AssembledSnowmanStepsWithoutAllocating) {
-  EXPECT_EQ(allocations_in_frames("snowman", 60, 2), 0);
+  EXPECT_EQ(allocations_in_frames("snowman", 60, 100), 0);
 }
 
 }  // namespace

@@ -55,6 +55,16 @@ void size_workspace(std::span<const BodyModel> bodies, BodyCollisionWorkspace& c
     counts.push_back(static_cast<int>(body.tessellation.triangles.size()));
   }
   resize_broadphase(counts, cws.broadphase);
+  // Room for a contact as large as the bodies' surfaces, so that one forming or spreading inside
+  // a step does not allocate.
+  std::size_t triangles = 0, nodes = 0;
+  for (const BodyModel& body : bodies) {
+    triangles += body.tessellation.triangles.size();
+    nodes += static_cast<std::size_t>(body.n_nodes());
+  }
+  cws.pairs.reserve(2 * triangles);
+  cws.candidates.reserve(6 * triangles);
+  cws.contacts.reserve(nodes);
 }
 
 void compute_vertex_normals(const BodyModel& body, Scratch& s) {

@@ -71,6 +71,9 @@ void resize_broadphase(const std::vector<int>& triangle_counts, SurfaceBroadphas
   broadphase.body_boxes.assign(n, Box3{});
   for (std::size_t b = 0; b < n; ++b) {
     t.tree.push_back(std::make_unique<btDbvt>());
+    // The traversal's persistent stack, sized now so that a first overlap inside a step does not
+    // allocate (it still doubles if ever too small).
+    t.tree.back()->m_stkStack.reserve(std::max(256, 4 * triangle_counts[b]));
     t.leaf[b].assign(static_cast<std::size_t>(triangle_counts[b]), nullptr);
     broadphase.boxes[b].assign(static_cast<std::size_t>(triangle_counts[b]), Box3{});
   }

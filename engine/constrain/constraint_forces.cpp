@@ -84,7 +84,7 @@ void init_constraint_workspace(const ConstrainedSystem& system, ConstraintWorksp
   cw.N_sparse.resize(3 * m, 3 * m);
   cw.N_sparse.setFromTriplets(pattern.begin(), pattern.end());
   cw.N_sparse.makeCompressed();
-  cw.ldlt.analyzePattern(cw.N_sparse);
+  cw.ldlt.analyze(cw.N_sparse);
 }
 
 void add_constraint_rates(const ConstrainedSystem& system, const VecX& q, const VecX& v,
@@ -150,8 +150,8 @@ void add_constraint_rates(const ConstrainedSystem& system, const VecX& q, const 
     for (int i = 0; i < 3 * m; ++i) max_diagonal = std::max(max_diagonal, cw.N_sparse.coeff(i, i));
     cw.regularization = kRegularization * std::max(max_diagonal, Real(1e-300));
     for (int i = 0; i < 3 * m; ++i) cw.N_sparse.coeffRef(i, i) += cw.regularization;
-    cw.ldlt.factorize(cw.N_sparse);
-    cw.f_c = cw.ldlt.solve(-cw.r);
+    cw.ldlt.factorize_values(cw.N_sparse);
+    cw.ldlt.solve_negated(cw.r, cw.f_c);
   } else {
     cw.N.setZero();
     for_each_shared_body_pair(

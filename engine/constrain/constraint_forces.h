@@ -29,6 +29,7 @@
 #include <Eigen/SparseCore>
 
 #include "constrain/constraint_model.h"
+#include "constrain/sparse_ldlt.h"
 #include "deform/body_dynamics.h"
 
 namespace pbm {
@@ -50,7 +51,7 @@ struct ConstraintWorkspace {
   MatX N;      // dense (3 k-bar)^2
   Eigen::PartialPivLU<MatX> lu;
   Eigen::SparseMatrix<Real> N_sparse;  // its pattern: the blocks of constraints sharing a body
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<Real>> ldlt;
+  SparseLDLT ldlt;
   std::vector<VecX> column, response;          // per body, k: one column of G and of Y
   std::vector<VecX> hinge_force, hinge_delta;  // per body, k: hinge spring scratch
   VecX delta;                                  // k of the largest body

@@ -99,6 +99,13 @@ void resize_workspace(const BodyModel& body, BodyWorkspace& ws) {
   ws.slipping.reserve(3 * 2 * static_cast<std::size_t>(n));
   ws.penetrating.clear();
   ws.penetrating.reserve(static_cast<std::size_t>(n));
+  // Room for every contact sample pressing at once, so a contact that spreads never allocates
+  // inside a step.
+  const auto samples = static_cast<Eigen::Index>(body.contact_samples.size());
+  ws.contact_directions.setZero(k, samples);
+  ws.contact_rotated.setZero(k, samples);
+  ws.contact_magnitude.setZero(samples);
+  ws.contact_mobility.setZero(samples);
   ws.K_q.setZero(body.has_local ? 3 * n : 0);
   ws.A.setZero(k, k);
   ws.A_eigen.reserve(k);
