@@ -61,17 +61,17 @@ int run_bench_render(const std::string& scene_path, int frames) {
     Workspace ws;
     init_workspace(model, inputs, ws);
     State state = initial_state(model);
-    const Camera camera = model.scene.camera
-                              ? camera_from_scene(*model.scene.camera)
-                              : frame_bodies(make_snapshot(model, state, inputs, ws), 16.0f / 9.0f);
+    const draw::Snapshot first = make_snapshot(model, state, inputs, ws);
+    const Camera camera =
+        first.camera ? camera_from_view(*first.camera) : frame_focus(first, 16.0f / 9.0f);
     std::vector<double> simulate, upload, draw, bare;
     std::size_t triangles = 0;
     for (int f = 0; f < frames + 3; ++f) {  // 3 warm-up frames: shader JIT, buffer sizes
       auto t0 = Clock::now();
       if (!advance_frame(model, state, ws).ok) break;
-      const Snapshot snapshot = make_snapshot(model, state, inputs, ws);
+      const draw::Snapshot snapshot = make_snapshot(model, state, inputs, ws);
       const double sim_ms = ms_since(t0);
-      triangles = snapshot.bodies[0].triangles.size();
+      triangles = snapshot.meshes[0].topology->triangles.size();  // body 0's
       renderer->render(snapshot, camera, options);
       const RenderTimes times = renderer->times();
       renderer->render_bare(snapshot, camera, options);

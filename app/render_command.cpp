@@ -137,12 +137,12 @@ int run_render(const RenderCommandOptions& o) {
   options.width = plan.width;
   options.height = plan.height;
   options.samples = o.samples;
-  options.wireframe = o.wireframe;
-  // The scene's camera moves only with its tracks (a function of time); without one the
-  // framing of frame 0 holds for the whole render. Either way frame k is the same image whether
-  // rendered alone or in a sequence.
-  const Camera framed = frame_bodies(make_snapshot(model, state, inputs, ws),
-                                     static_cast<float>(plan.width) / plan.height);
+  options.overlays = o.overlays;
+  // The scene's camera moves only with its tracks (a function of time: the snapshot's camera);
+  // without one the framing of frame 0 holds for the whole render. Either way frame k is the
+  // same image whether rendered alone or in a sequence.
+  const Camera framed = frame_focus(make_snapshot(model, state, inputs, ws),
+                                    static_cast<float>(plan.width) / plan.height);
   RgbImage image;
   image.width = plan.width;
   image.height = plan.height;
@@ -160,8 +160,8 @@ int run_render(const RenderCommandOptions& o) {
         }
       }
       if (frame < plan.first) continue;
-      const Snapshot snapshot = make_snapshot(model, state, inputs, ws);  // drive at its time
-      renderer->render(snapshot, model.scene.camera ? camera_from_drive(ws.drive) : framed,
+      const draw::Snapshot snapshot = make_snapshot(model, state, inputs, ws);
+      renderer->render(snapshot, snapshot.camera ? camera_from_view(*snapshot.camera) : framed,
                        options);
       renderer->read_rgb(image.pixels);
       write_png((fs::path(o.out) / frame_name(frame)).string(), image);

@@ -16,6 +16,7 @@
 #include "core/types.h"
 #include "deform/body_model.h"
 #include "scene/scene.h"
+#include "sim/snapshot_geometry.h"
 
 namespace pbm {
 
@@ -50,6 +51,7 @@ struct Model {
   ConstraintSystemModel constraints;   // ch. 7
   BodyCollisionModel body_collisions;  // 5.2.2, from the solver's keys and the constraints
   int n_q = 0, n_v = 0;
+  SnapshotGeometry snapshot_geometry;  // shared by every snapshot (sim/snapshot.h), drawing only
 };
 
 // Throws pbm::Error (file, path) when the scene cannot be compiled.
