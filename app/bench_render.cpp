@@ -10,7 +10,6 @@
 #include "core/error.h"
 #include "headless_renderer.h"
 #include "scene/scene_json.h"
-#include "sim/model.h"
 #include "sim/simulation.h"
 #include "sim/snapshot.h"
 
@@ -58,18 +57,17 @@ int run_bench_render(const std::string& scene_path, int frames) {
     }
     Simulation sim(scene);
     const Model& model = sim.model;
+    const draw::Snapshot first = make_snapshot(sim);
     const Camera camera =
-        model.scene.camera
-            ? camera_from_scene(*model.scene.camera)
-            : frame_bodies(make_snapshot(model, sim.state, sim.inputs, sim.ws), 16.0f / 9.0f);
+        first.camera ? camera_from_view(*first.camera) : frame_focus(first, 16.0f / 9.0f);
     std::vector<double> simulate, upload, draw, bare;
     std::size_t triangles = 0;
     for (int f = 0; f < frames + 3; ++f) {  // 3 warm-up frames: shader JIT, buffer sizes
       auto t0 = Clock::now();
       if (!advance_frame(sim).ok) break;
-      const Snapshot snapshot = make_snapshot(model, sim.state, sim.inputs, sim.ws);
+      const draw::Snapshot snapshot = make_snapshot(sim);
       const double sim_ms = ms_since(t0);
-      triangles = snapshot.bodies[0].triangles.size();
+      triangles = snapshot.meshes[0].topology->triangles.size();  // body 0's
       renderer->render(snapshot, camera, options);
       const RenderTimes times = renderer->times();
       renderer->render_bare(snapshot, camera, options);

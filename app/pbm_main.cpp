@@ -36,7 +36,8 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--out", render.out, "folder for frame_NNNN.png (default out)");
   render_cmd->add_option("--video", render.video, "also encode this video with ffmpeg");
   render_cmd->add_option("--samples", render.samples, "MSAA samples, 1-16 (default 4)");
-  render_cmd->add_flag("--wireframe", render.wireframe, "overlay the finite-element mesh");
+  render_cmd->add_flag("--overlays", render.overlays,
+                       "draw the editor overlays: springs, constraints, the finite-element mesh");
 
   pbm::BenchOptions bench;
   auto* bench_cmd = app.add_subcommand(

@@ -134,12 +134,12 @@ int run_render(const RenderCommandOptions& o) {
   options.width = plan.width;
   options.height = plan.height;
   options.samples = o.samples;
-  options.wireframe = o.wireframe;
-  // The scene's camera moves only with its tracks (a function of time); without one the
-  // framing of frame 0 holds for the whole render. Either way frame k is the same image whether
-  // rendered alone or in a sequence.
-  const Camera framed = frame_bodies(make_snapshot(model, sim->state, sim->inputs, sim->ws),
-                                     static_cast<float>(plan.width) / plan.height);
+  options.overlays = o.overlays;
+  // The scene's camera moves only with its tracks (a function of time: the snapshot's camera);
+  // without one the framing of frame 0 holds for the whole render. Either way frame k is the
+  // same image whether rendered alone or in a sequence.
+  const Camera framed =
+      frame_focus(make_snapshot(*sim), static_cast<float>(plan.width) / plan.height);
   RgbImage image;
   image.width = plan.width;
   image.height = plan.height;
@@ -157,9 +157,8 @@ int run_render(const RenderCommandOptions& o) {
         }
       }
       if (frame < plan.first) continue;
-      // drive at its time
-      const Snapshot snapshot = make_snapshot(model, sim->state, sim->inputs, sim->ws);
-      renderer->render(snapshot, model.scene.camera ? camera_from_drive(sim->ws.drive) : framed,
+      const draw::Snapshot snapshot = make_snapshot(*sim);
+      renderer->render(snapshot, snapshot.camera ? camera_from_view(*snapshot.camera) : framed,
                        options);
       renderer->read_rgb(image.pixels);
       write_png((fs::path(o.out) / frame_name(frame)).string(), image);

@@ -15,7 +15,7 @@ struct RenderCommandOptions {
   std::string out = "out";        // folder for frame_NNNN.png
   std::string video;              // encode to this file with ffmpeg
   int samples = 4;                // MSAA
-  bool wireframe = false;
+  bool overlays = false;          // springs, constraints, the finite elements' wireframe
 };
 
 int run_render(const RenderCommandOptions& options);

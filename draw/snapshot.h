@@ -6,6 +6,7 @@
 // these kinds (a figure's segments as capsules and boxes, a liquid's surface as a height field)
 // without a renderer change. Plain data in float, copyable across threads. Constant geometry
 // (a body's triangles, a mesh obstacle's vertices) is shared between snapshots, not copied.
+// Every field has a default, so drawables are made with designated initializers.
 #pragma once
 
 #include <array>
@@ -24,7 +25,9 @@ using Mat3f = Eigen::Matrix3f;
 
 // The picture itself, or the editor's overlays (spring lines, constraint markers, the finite
 // elements' wireframe): `pbm render` draws overlays only with --overlays, the studio by its View
-// menu.
+// menu. Overlay lines and points are drawn over everything (a marker inside a body stays
+// visible); overlay solids and the meshes' edges are hidden by what is in front of them.
+// Scene-layer solids cast shadows; overlay ones do not.
 enum class Layer { scene, overlay };
 
 struct Material {
@@ -34,8 +37,8 @@ struct Material {
 
 // Triangles and element edges over a mesh's vertices: constant while time runs.
 struct MeshTopology {
-  std::vector<std::array<int, 3>> triangles;  // counter-clockwise seen from outside
-  std::vector<std::array<int, 2>> edges;      // wireframe (overlay layer); may be empty
+  std::vector<std::array<int, 3>> triangles{};  // counter-clockwise seen from outside
+  std::vector<std::array<int, 2>> edges{};      // wireframe (overlay layer); may be empty
 };
 
 enum class Shading {
@@ -45,11 +48,11 @@ enum class Shading {
 
 // A triangle mesh: vertex i is drawn at rotation * positions[i] + offset [m], world frame.
 struct Mesh {
-  std::string name;
+  std::string name{};
   int pick = -1;  // what a click selects: a body index, or -1 (not pickable)
-  std::shared_ptr<const std::vector<Vec3f>> positions;
-  std::shared_ptr<const MeshTopology> topology;
-  Material material;
+  std::shared_ptr<const std::vector<Vec3f>> positions{};
+  std::shared_ptr<const MeshTopology> topology{};
+  Material material{};
   Shading shading = Shading::smooth;
   Mat3f rotation = Mat3f::Identity();
   Vec3f offset = Vec3f::Zero();
@@ -85,23 +88,24 @@ struct HeightField {
   Vec3f origin = Vec3f::Zero();
   Vec2f cell{1, 1};  // dx, dy [m]
   int nx = 0, ny = 0;
-  std::vector<float> heights;  // nx * ny, row by row [m]
-  Material material;
+  std::vector<float> heights{};  // nx * ny, row by row [m]
+  Material material{};
   Layer layer = Layer::scene;
 };
 
 // Line segments: segment k runs from points[2k] to points[2k + 1] in colors[k].
 struct Lines {
-  std::vector<Vec3f> points;
-  std::vector<Vec3f> colors;
-  bool end_points = false;  // also a dot at each end (springs, constraint ends)
+  std::vector<Vec3f> points{};
+  std::vector<Vec3f> colors{};
+  bool end_points = false;   // also a dot at each end (springs, constraint ends)
+  float end_point_size = 7;  // [pixels]
   Layer layer = Layer::overlay;
 };
 
 struct Points {
-  std::vector<Vec3f> positions;
-  std::vector<Vec3f> colors;  // one per point
-  float size = 6;             // [pixels]
+  std::vector<Vec3f> positions{};
+  std::vector<Vec3f> colors{};  // one per point
+  float size = 6;               // [pixels]
   Layer layer = Layer::overlay;
 };
 
@@ -124,14 +128,14 @@ struct Bounds {
 
 struct Snapshot {
   double time = 0;  // [s]
-  std::vector<Mesh> meshes;
-  std::vector<Plane> planes;
-  std::vector<Primitive> primitives;
-  std::vector<HeightField> height_fields;
-  std::vector<Lines> lines;
-  std::vector<Points> points;
-  std::optional<CameraView> camera;  // absent: the scene has none (views frame `focus`)
-  Bounds focus;                      // what an automatic camera frames: the moving objects
+  std::vector<Mesh> meshes{};
+  std::vector<Plane> planes{};
+  std::vector<Primitive> primitives{};
+  std::vector<HeightField> height_fields{};
+  std::vector<Lines> lines{};
+  std::vector<Points> points{};
+  std::optional<CameraView> camera{};  // absent: the scene has none (views frame `focus`)
+  Bounds focus{};                      // what an automatic camera frames: the moving objects
 };
 
 }  // namespace pbm::draw

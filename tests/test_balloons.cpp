@@ -31,20 +31,20 @@ namespace {
 using test::penetration_depth;
 
 // Deepest node of one balloon inside another [m].
-double max_penetration(const std::vector<const BodySnapshot*>& balloons) {
+double max_penetration(const std::vector<const draw::Mesh*>& balloons) {
   double worst = 0;
-  for (const BodySnapshot* a : balloons) {
-    for (const BodySnapshot* b : balloons) {
+  for (const draw::Mesh* a : balloons) {
+    for (const draw::Mesh* b : balloons) {
       if (a != b) worst = std::max(worst, penetration_depth(*a, *b));
     }
   }
   return worst;
 }
 
-std::vector<const BodySnapshot*> balloons_of(const Snapshot& snap) {
-  std::vector<const BodySnapshot*> out;
-  for (const BodySnapshot& b : snap.bodies) {
-    if (b.name.starts_with("balloon")) out.push_back(&b);
+std::vector<const draw::Mesh*> balloons_of(const Snapshot& snap) {
+  std::vector<const draw::Mesh*> out;
+  for (const draw::Mesh& b : snap.meshes) {
+    if (b.pick >= 0 && b.name.starts_with("balloon")) out.push_back(&b);
   }
   return out;
 }
@@ -84,7 +84,7 @@ BalloonRun simulate(const std::string& name, double seconds) {
     const FrameResult r = advance_frame(sim);
     EXPECT_TRUE(r.ok) << r.message;
     if (!r.ok) break;
-    const Snapshot snap = make_snapshot(sim.model, sim.state, sim.inputs, sim.ws);
+    const Snapshot snap = make_snapshot(sim);
     run.max_penetration = std::max(run.max_penetration, max_penetration(balloons_of(snap)));
     if (sim.state.time > 1.0) {
       run.max_violation_late = std::max(run.max_violation_late, sim.stats.constraint_violation);
@@ -119,12 +119,14 @@ BalloonRun simulate(const std::string& name, double seconds) {
 TEST(Balloons, PenetrationMeasureSeesAKnownOverlap) {
   const Scene scene = load_scene(std::string(PBM_SOURCE_DIR) + "/scenes/balloons-2.json");
   test::Simulation sim(scene);
-  Snapshot snap = make_snapshot(sim.model, sim.state, sim.inputs, sim.ws);
-  std::vector<const BodySnapshot*> balloons = balloons_of(snap);
+  Snapshot snap = make_snapshot(sim);
+  std::vector<const draw::Mesh*> balloons = balloons_of(snap);
   ASSERT_EQ(balloons.size(), 2u);
   EXPECT_EQ(max_penetration(balloons), 0.0);  // released from the side: apart
-  BodySnapshot copy = *balloons[1];
-  for (Vec3f& x : copy.positions) x.x() -= 0.1f;  // overlaps the original by 0.1 m
+  draw::Mesh copy = *balloons[1];
+  auto moved = std::make_shared<std::vector<draw::Vec3f>>(*copy.positions);
+  for (draw::Vec3f& x : *moved) x.x() -= 0.1f;  // overlaps the original by 0.1 m
+  copy.positions = moved;
   const double depth = max_penetration({balloons[1], &copy});
   std::printf("known 0.1 m overlap measured as %.4f m\n", depth);
   EXPECT_NEAR(depth, 0.1, 0.02);

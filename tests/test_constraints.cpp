@@ -458,10 +458,10 @@ TEST(ConstraintScenes, SeesawBallsDoNotGoThroughThePlank) {
   int frames_inside = 0;
   while (sim.state.time < 3.0) {
     ASSERT_TRUE(advance_frame(sim).ok);
-    const Snapshot snap = make_snapshot(sim.model, sim.state, sim.inputs, sim.ws);
+    const Snapshot snap = make_snapshot(sim);
     Real depth = 0;
-    for (std::size_t b = 1; b < snap.bodies.size(); ++b) {
-      depth = std::max(depth, test::penetration_depth(snap.bodies[b], snap.bodies[0]));
+    for (std::size_t b = 1; b < sim.model.bodies.size(); ++b) {  // body b's mesh is meshes[b]
+      depth = std::max(depth, test::penetration_depth(snap.meshes[b], snap.meshes[0]));
     }
     deepest = std::max(deepest, depth);
     frames_inside += depth > 0.01;

@@ -221,12 +221,12 @@ TEST(MovingObstacles, PlacementVelocitiesAreTheTracksDerivatives) {
 // The snapshot (renderer and studio) draws an obstacle where it is at the state's time.
 TEST(MovingObstacles, SnapshotShowsTheObstacleWhereItIs) {
   test::Simulation sim(box_hits_ball(DeformLevel::rigid));
-  const Snapshot at_start = make_snapshot(sim.model, sim.state, sim.inputs, sim.ws);
+  const Snapshot at_start = make_snapshot(sim);
   for (int f = 0; f < 50; ++f) ASSERT_TRUE(advance_frame(sim).ok);
-  const Snapshot later = make_snapshot(sim.model, sim.state, sim.inputs, sim.ws);
-  ASSERT_EQ(later.obstacles.size(), 1u);
-  EXPECT_FLOAT_EQ(at_start.obstacles[0].point.x(), -2.0f);
-  EXPECT_NEAR(later.obstacles[0].point.x(), -1.5f, 1e-5f);  // 1 m/s for 0.5 s
+  const Snapshot later = make_snapshot(sim);
+  ASSERT_EQ(later.primitives.size(), 1u);  // the box
+  EXPECT_FLOAT_EQ(at_start.primitives[0].center.x(), -2.0f);
+  EXPECT_NEAR(later.primitives[0].center.x(), -1.5f, 1e-5f);  // 1 m/s for 0.5 s
 }
 
 // (e) Obstacle tracks in the file: round trip, the kind's own key stored as point, errors at

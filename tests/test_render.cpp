@@ -1,14 +1,17 @@
 // The headless renderer as `pbm render` drives it: golden frames within 35 dB (regenerate with
 // tools/regen-golden), a frame rendered alone equals the same frame of a sequence, the picture
-// follows the physics, and bad input stops before any work with exit 2 and nothing left behind.
+// follows the physics, the editor's overlays appear only when asked (--overlays), and bad input
+// stops before any work with exit 2 and nothing left behind.
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "cli_runner.h"
@@ -19,12 +22,12 @@
 #include "scene/scene_json.h"
 #include "sim/simulation.h"
 #include "sim/snapshot.h"
-#include "sim/tracks.h"
 
 namespace pbm {
 namespace {
 
 namespace fs = std::filesystem;
+using Vec3f = Eigen::Vector3f;
 
 using Result = test::CliResult;
 
@@ -87,12 +90,12 @@ struct Mask {
   double mean_row = 0;
 };
 
-Mask ball_mask(Renderer& renderer, Snapshot snapshot, const Camera& camera,
+Mask ball_mask(Renderer& renderer, draw::Snapshot snapshot, const Camera& camera,
                const RenderOptions& options) {
   std::vector<unsigned char> with, without;
   renderer.render(snapshot, camera, options);
   renderer.read_rgb(with);
-  snapshot.bodies.clear();
+  std::erase_if(snapshot.meshes, [](const draw::Mesh& m) { return m.pick >= 0; });  // the bodies
   renderer.render(snapshot, camera, options);
   renderer.read_rgb(without);
   Mask mask;
@@ -113,18 +116,14 @@ TEST(Render, TheBallsPixelsFollowItDownTheImage) {
   OsmesaContext context;
   Renderer renderer(context.functions());
   Simulation sim(load_scene(scene_path("jello-ball")));
-  const Model& model = sim.model;
-  const Inputs& inputs = sim.inputs;
-  Workspace& ws = sim.ws;
-  State& state = sim.state;
-  const Camera camera = camera_from_scene(*model.scene.camera);
+  const Camera camera = camera_from_view(*make_snapshot(sim).camera);
   RenderOptions options;
   options.width = 320;
   options.height = 240;
   options.shadows = false;
-  const Mask at_0 = ball_mask(renderer, make_snapshot(model, state, inputs, ws), camera, options);
+  const Mask at_0 = ball_mask(renderer, make_snapshot(sim), camera, options);
   for (int f = 0; f < 15; ++f) ASSERT_TRUE(advance_frame(sim).ok);
-  const Mask at_15 = ball_mask(renderer, make_snapshot(model, state, inputs, ws), camera, options);
+  const Mask at_15 = ball_mask(renderer, make_snapshot(sim), camera, options);
   // The ball is in the picture (removing it changes hundreds of pixels)...
   EXPECT_GT(at_0.count, 500);
   EXPECT_GT(at_15.count, 500);
@@ -143,21 +142,63 @@ long count_colour(const std::vector<unsigned char>& rgb, int r, int g, int b) {
   return n;
 }
 
-// The jello-ball at frame 0 from its scene camera, at 320x240: what the overlay tests draw on.
+const int kYellow[3] = {242, 217, 51};  // springs: (0.95, 0.85, 0.2)
+const int kGreen[3] = {64, 230, 89};    // a held constraint: (0.25, 0.9, 0.35)
+const int kRed[3] = {242, 51, 51};      // a constraint violated by 1 cm or more
+const int kWire[3] = {20, 20, 26};      // the finite elements' edges
+
+long count_colour(const std::vector<unsigned char>& rgb, const int (&c)[3]) {
+  return count_colour(rgb, c[0], c[1], c[2]);
+}
+
+// The jello-ball with a spring pulling its top node and two point constraints on it: one held
+// (a front node to a world anchor where the node is) and one from the top node to an anchor
+// 1 m beside it.
+Scene jello_with_overlays() {
+  Scene scene = load_scene(scene_path("jello-ball"));
+  Simulation plain(scene);
+  const int top = plain.model.bodies[0].tessellation.north_pole;
+  const draw::Snapshot first = make_snapshot(plain);
+  const std::vector<Vec3f>& x = *first.meshes[0].positions;
+  const Vec3 pole = x[top].cast<double>();
+  // The node nearest the camera (the scene's looks along +y), away from the spring's.
+  const int front = static_cast<int>(
+      std::min_element(x.begin(), x.end(), [](auto& a, auto& b) { return a.y() < b.y(); }) -
+      x.begin());
+  ConstraintDef held;
+  held.a.body = 0;
+  held.a.node = front;
+  held.b.world = x[front].cast<double>();
+  ConstraintDef off;
+  off.a.body = 0;
+  off.a.node = top;
+  off.b.world = pole + Vec3(-1.0, 0, 0.3);
+  scene.constraints = {held, off};
+  SpringDef spring;
+  spring.body = 0;
+  spring.node = top;
+  spring.target = pole + Vec3(1.0, 0, 0.5);
+  spring.stiffness = 10;
+  scene.springs = {spring};
+  return scene;
+}
+
+// jello_with_overlays at frame 0 from its scene camera, at 320x240: what the overlay tests draw.
 struct JelloView {
-  explicit JelloView(const Scene& scene = load_scene(scene_path("jello-ball"))) : sim(scene) {
+  OsmesaContext context;
+  Renderer renderer{context.functions()};
+  Simulation sim{jello_with_overlays()};
+  Camera camera;
+  RenderOptions options;
+  JelloView() {
+    camera = camera_from_view(*snapshot().camera);
     options.width = 320;
     options.height = 240;
   }
-  OsmesaContext context;
-  Renderer renderer{context.functions()};
-  Simulation sim;
-  const Camera camera = camera_from_scene(*sim.model.scene.camera);
-  RenderOptions options;
-  Snapshot snapshot() {
-    return make_snapshot(sim.model, initial_state(sim.model), sim.inputs, sim.ws);
+  draw::Snapshot snapshot() {
+    return make_snapshot(sim.world, sim.inputs, initial_state(sim.model), sim.ws);
   }
-  std::vector<unsigned char> draw(const Snapshot& snap) {
+  std::vector<unsigned char> draw(const draw::Snapshot& snap) {
     renderer.render(snap, camera, options);
     std::vector<unsigned char> rgb;
     renderer.read_rgb(rgb);
@@ -165,62 +206,78 @@ struct JelloView {
   }
 };
 
-TEST(Render, SpringsAndTheWireframeAreDrawn) {
+// A clean picture by default: the springs, constraints and wireframe of the snapshot are its
+// overlay layer, drawn only with RenderOptions::overlays.
+TEST(Render, OverlaysAreDrawnOnlyWhenAsked) {
   JelloView view;
-  const auto plain = view.draw(view.snapshot());
-  // A spring from the top node to a point beside the ball: a yellow line with end points.
-  Scene sprung = load_scene(scene_path("jello-ball"));
-  SpringDef spring;
-  spring.node = view.sim.model.bodies[0].tessellation.north_pole;
-  spring.target = Vec3(0.5, 0, 4.5);
-  spring.stiffness = 10;
-  sprung.springs.push_back(spring);
-  JelloView with(sprung);
-  const auto with_spring = with.draw(with.snapshot());
-  EXPECT_EQ(count_colour(plain, 242, 217, 51), 0);
-  EXPECT_GT(count_colour(with_spring, 242, 217, 51), 20);
-  view.options.wireframe = true;
-  const auto wire = view.draw(view.snapshot());
+  const draw::Snapshot snap = view.snapshot();
+  ASSERT_EQ(snap.lines.size(), 2u);  // the spring, the constraints
+  const auto clean = view.draw(snap);
+  view.options.overlays = true;
+  const auto overlays = view.draw(snap);
+  std::printf("clean: %ld yellow, %ld green, %ld red, %ld wire; overlays: %ld, %ld, %ld, %ld\n",
+              count_colour(clean, kYellow), count_colour(clean, kGreen), count_colour(clean, kRed),
+              count_colour(clean, kWire), count_colour(overlays, kYellow),
+              count_colour(overlays, kGreen), count_colour(overlays, kRed),
+              count_colour(overlays, kWire));
+  EXPECT_EQ(count_colour(clean, kYellow), 0);
+  EXPECT_EQ(count_colour(clean, kGreen), 0);
+  EXPECT_EQ(count_colour(clean, kRed), 0);
+  EXPECT_GT(count_colour(overlays, kYellow), 20);  // the spring's line and end points
+  EXPECT_GE(count_colour(overlays, kGreen), 9);    // the held constraint's dot (5 pixels wide)
+  EXPECT_GT(count_colour(overlays, kRed), 20);     // the broken one's line
   // The element edges darken part of the ball.
-  EXPECT_GT(count_colour(wire, 20, 20, 26) - count_colour(plain, 20, 20, 26), 100);
+  EXPECT_GT(count_colour(overlays, kWire) - count_colour(clean, kWire), 100);
+  // Without the overlay layer the picture is the scene's alone: the same as with no overlays
+  // in the snapshot at all.
+  draw::Snapshot bare = snap;
+  bare.lines.clear();
+  view.options.overlays = false;
+  EXPECT_EQ(view.draw(bare), clean);
 }
 
-// Constraint lines: green while held, red when violated by a centimetre or more (the studio's
-// view of ch. 7's assembly).
-TEST(Render, ConstraintsAreColouredByViolation) {
+// Line colours are the snapshot's: a segment drawn green, then red, shows that colour (the
+// engine maps |C| to it, tests/test_snapshot.cpp).
+TEST(Render, LinesTakeTheirSegmentsColours) {
   JelloView view;
-  Snapshot snap = view.snapshot();
-  auto draw = [&](float violation) {
-    snap.constraints = {{Vec3f(-1.0f, 0.0f, 4.0f), Vec3f(1.0f, 0.0f, 5.0f), violation, 0}};
-    return view.draw(snap);
-  };
-  const auto held = draw(0.0f), broken = draw(0.05f);
-  const long green_held = count_colour(held, 64, 230, 89),
-             red_held = count_colour(held, 242, 51, 51);
-  const long green_broken = count_colour(broken, 64, 230, 89);
-  const long red_broken = count_colour(broken, 242, 51, 51);
-  std::printf("held: %ld green, %ld red; broken: %ld green, %ld red\n", green_held, red_held,
-              green_broken, red_broken);
-  EXPECT_GT(green_held, 20);
-  EXPECT_GT(red_broken, 20);
-  EXPECT_LT(red_held, 5);
-  EXPECT_LT(green_broken, 5);
+  view.options.overlays = true;
+  draw::Snapshot snap = view.snapshot();
+  snap.lines = {{.points = {Vec3f(-1.0f, 0.0f, 4.0f), Vec3f(1.0f, 0.0f, 5.0f)},
+                 .colors = {Vec3f(0.25f, 0.9f, 0.35f)},
+                 .end_points = true,
+                 .end_point_size = 5}};
+  const auto green = view.draw(snap);
+  snap.lines[0].colors[0] = Vec3f(0.95f, 0.2f, 0.2f);
+  const auto red = view.draw(snap);
+  EXPECT_GT(count_colour(green, kGreen), 20);
+  EXPECT_LT(count_colour(green, kRed), 5);
+  EXPECT_GT(count_colour(red, kRed), 20);
+  EXPECT_LT(count_colour(red, kGreen), 5);
+  // A scene-layer line is drawn without --overlays; an overlay one is not.
+  view.options.overlays = false;
+  EXPECT_LT(count_colour(view.draw(snap), kRed), 5);
+  snap.lines[0].layer = draw::Layer::scene;
+  EXPECT_GT(count_colour(view.draw(snap), kRed), 20);
 }
 
-TEST(Render, CameraTracksMoveTheSceneCamera) {
-  Scene scene = load_scene(scene_path("jello-ball"));
-  TrackDef track;
-  track.target = "camera.position[0]";
-  track.keys = {{0.0, 1.0}, {10.0, -6.0}};
-  scene.tracks.push_back(track);
-  const Model model = build_model(scene);
-  Drive drive;
-  evaluate_drive(model, Inputs{}, 0.0, drive);
-  EXPECT_FLOAT_EQ(camera_from_drive(drive).position.x(), 1.0f);
-  EXPECT_EQ(camera_from_drive(drive).target, camera_from_scene(*scene.camera).target);
-  evaluate_drive(model, Inputs{}, 5.0, drive);
-  EXPECT_FLOAT_EQ(camera_from_drive(drive).position.x(), -2.5f);  // halfway, linear keys
-  // A camera track needs a camera to move.
+TEST(Render, OverlaysFlagOfTheCommandLine) {
+  const fs::path clean = temp_dir("clean"), overlays = temp_dir("overlays");
+  const std::string common =
+      "render " + scene_path("interactive") + " --frames 3:3 --size 320x240 ";
+  ASSERT_EQ(pbm_cli(common + "--out " + clean.string()).code, 0);
+  ASSERT_EQ(pbm_cli(common + "--overlays --out " + overlays.string()).code, 0);
+  const RgbImage a = read_png((clean / "frame_0003.png").string());
+  const RgbImage b = read_png((overlays / "frame_0003.png").string());
+  // The scene's spring (its mouse spring, sec. 6.4) is yellow only with --overlays.
+  EXPECT_EQ(count_colour(a.pixels, kYellow), 0);
+  EXPECT_GT(count_colour(b.pixels, kYellow), 10);
+  // --wireframe is gone: --overlays draws the element edges.
+  const Result old = pbm_cli(common + "--wireframe --out " + temp_dir("wire").string());
+  EXPECT_EQ(old.code, 2) << old.output;
+  EXPECT_NE(old.output.find("--wireframe"), std::string::npos) << old.output;
+}
+
+TEST(Render, CameraTracksNeedACamera) {
   const std::string text = R"({"bodies": [{"material": {"mass": 1}}],
     "tracks": [{"target": "camera.fov", "keys": [[0, 30], [1, 40]]}]})";
   try {
@@ -230,6 +287,43 @@ TEST(Render, CameraTracksMoveTheSceneCamera) {
     EXPECT_NE(std::string(e.what()).find("tracks[0].target"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("need a 'camera'"), std::string::npos) << e.what();
   }
+}
+
+// `pbm render` draws each frame from the snapshot's camera, its tracks applied at the frame's
+// time (what the studio's "View from scene camera" shows): frame 16 of a scene whose camera
+// moves is the in-process render of that frame's snapshot from snapshot.camera, bit for bit,
+// and not the picture from where the scene's camera starts.
+TEST(Render, TheCommandLineDrawsFromTheSnapshotsCamera) {
+  const fs::path dir = temp_dir("camera_track");
+  fs::create_directories(dir);
+  Scene scene = load_scene(scene_path("jello-ball"));
+  scene.tracks.push_back({.target = "camera.position[0]", .keys = {{0.0, 1.0}, {1.0, -9.0}}});
+  const fs::path file = dir / "moving-camera.json";
+  std::ofstream(file) << scene_to_json(scene);
+  const Result r = pbm_cli("render " + file.string() + " --frames 16:16 --size 160x120 --out " +
+                           (dir / "out").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const RgbImage rendered = read_png((dir / "out" / "frame_0016.png").string());
+
+  Simulation sim(load_scene(file.string()));
+  const draw::Snapshot start = make_snapshot(sim);
+  for (int f = 0; f < 16; ++f) ASSERT_TRUE(advance_frame(sim).ok);
+  const draw::Snapshot snap = make_snapshot(sim);
+  ASSERT_TRUE(snap.camera);
+  EXPECT_NEAR(snap.camera->position.x(), 1.0 - 10.0 * snap.time, 1e-5);
+  EXPECT_LT(snap.camera->position.x(), -3.0f);
+  OsmesaContext context;
+  Renderer renderer(context.functions());
+  RenderOptions options;
+  options.width = 160;
+  options.height = 120;
+  std::vector<unsigned char> from_snapshot, from_start;
+  renderer.render(snap, camera_from_view(*snap.camera), options);
+  renderer.read_rgb(from_snapshot);
+  renderer.render(snap, camera_from_view(*start.camera), options);
+  renderer.read_rgb(from_start);
+  EXPECT_EQ(rendered.pixels, from_snapshot);
+  EXPECT_NE(rendered.pixels, from_start);
 }
 
 TEST(Render, BadOutputAndOptionsExit2BeforeAnyWork) {

@@ -65,15 +65,15 @@ Vec3 linear_momentum(const Model& model, const State& state) {
 
 // World position of node `node` of body 0 in the core's current state.
 Vec3 node_position(RunnerCore& core, int node) {
-  return core.snapshot().bodies[0].positions[static_cast<std::size_t>(node)].cast<Real>();
+  return core.snapshot().meshes[0].positions->at(static_cast<std::size_t>(node)).cast<Real>();
 }
 
 int rightmost_node(RunnerCore& core) {
   const Snapshot snap = core.snapshot();
+  const std::vector<draw::Vec3f>& x = *snap.meshes[0].positions;  // body 0
   int best = 0;
-  for (std::size_t i = 0; i < snap.bodies[0].positions.size(); ++i) {
-    if (snap.bodies[0].positions[i].x() > snap.bodies[0].positions[best].x())
-      best = static_cast<int>(i);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (x[i].x() > x[best].x()) best = static_cast<int>(i);
   }
   return best;
 }
@@ -447,7 +447,7 @@ TEST(Runner, TenThousandRandomCommandsEndWhereTheirJournalReplaysTo) {
     while (posting.load()) {
       const std::shared_ptr<const Snapshot> snap = runner.snapshot();
       const RunnerStatus status = runner.status();
-      if (snap && snap->bodies.size() == 1 && snap->bodies[0].positions.size() == 38) {
+      if (snap && snap->meshes.size() == 1 && snap->meshes[0].positions->size() == 38) {
         ++snapshots_seen;
       }
       if (status.frame < 0 || status.frame > status.last_frame || !status.scene) ++bad_statuses;

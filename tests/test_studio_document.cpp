@@ -96,15 +96,23 @@ TEST(StudioDocument, KeyframesOnTheFieldUnderEdit) {
       tracks_without_key(tracks_without_key(tracks, "gravity[2]", 0.5), "gravity[2]", 1.0).empty());
 }
 
+// An octahedron of radius 1 as a pickable mesh (pick = `pick`) at `offset`.
+draw::Mesh octahedron(int pick, const Eigen::Vector3f& offset) {
+  auto topology = std::make_shared<draw::MeshTopology>();
+  topology->triangles = {{0, 4, 3}, {3, 4, 1}, {1, 4, 2}, {2, 4, 0},
+                         {3, 5, 0}, {1, 5, 3}, {2, 5, 1}, {0, 5, 2}};
+  return {.pick = pick,
+          .positions = std::make_shared<std::vector<draw::Vec3f>>(std::vector<draw::Vec3f>{
+              {1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}}),
+          .topology = topology,
+          .offset = offset};
+}
+
 TEST(StudioPicking, CentreRayHitsTheBodyInFront) {
   // A unit sphere of 8 triangles' worth at the origin, seen from -y: the centre pixel's ray
   // hits it at y = -1 (to the facet's flatness), the corner pixel's misses.
-  Snapshot snap;
-  BodySnapshot body;
-  body.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  body.triangles = {{0, 4, 3}, {3, 4, 1}, {1, 4, 2}, {2, 4, 0},
-                    {3, 5, 0}, {1, 5, 3}, {2, 5, 1}, {0, 5, 2}};
-  snap.bodies.push_back(body);
+  draw::Snapshot snap;
+  snap.meshes.push_back(octahedron(0, Eigen::Vector3f::Zero()));
   Camera camera;
   camera.position = {0, -10, 0};
   camera.target = {0, 0, 0};
@@ -122,6 +130,29 @@ TEST(StudioPicking, CentreRayHitsTheBodyInFront) {
       drag_target(camera, pixel_ray(camera, 400, 240, 640, 480), pick->point);
   EXPECT_NEAR(target.y(), -1.0f, 1e-5f);
   EXPECT_GT(target.x(), 0.5f);
+}
+
+// Picking reads draw::Mesh as the renderer does: placed by its offset, and only where pick >= 0
+// (a mesh obstacle in front is seen through); pick_bounds frames one body.
+TEST(StudioPicking, MeshesArePlacedAndOnlyPickableOnesAreHit) {
+  draw::Snapshot snap;
+  snap.meshes.push_back(octahedron(-1, Eigen::Vector3f(0, -4, 0)));  // an obstacle, in front
+  snap.meshes.push_back(octahedron(3, Eigen::Vector3f(0, 2, 0)));    // body 3, behind it
+  Camera camera;
+  camera.position = {0, -10, 0};
+  camera.target = {0, 0, 0};
+  const auto pick = pick_body(snap, pixel_ray(camera, 320, 240, 640, 480));
+  ASSERT_TRUE(pick);
+  EXPECT_EQ(pick->body, 3);
+  EXPECT_NEAR(pick->distance, 11.0f, 1e-4f);  // its vertex (0, -1, 0) moved to y = 1
+  EXPECT_NEAR(pick->point.y(), 1.0f, 1e-5f);
+  snap.meshes[1].pick = -1;
+  EXPECT_FALSE(pick_body(snap, pixel_ray(camera, 320, 240, 640, 480)));
+  snap.meshes[1].pick = 3;
+  const draw::Bounds bounds = pick_bounds(snap, 3);
+  EXPECT_NEAR(bounds.min.y(), 1.0f, 1e-6f);
+  EXPECT_NEAR(bounds.max.y(), 3.0f, 1e-6f);
+  EXPECT_TRUE(pick_bounds(snap, 7).empty());
 }
 
 }  // namespace

@@ -24,7 +24,9 @@ struct SmokeResult {
   nlohmann::json report;
 };
 
-SmokeResult smoke(const std::string& name, const std::string& extra) {
+SmokeResult smoke(const std::string& name, const std::string& extra,
+                  const std::string& scene = std::string(PBM_SOURCE_DIR) +
+                                             "/scenes/interactive.json") {
   const fs::path dir = fs::path(PBM_BINARY_DIR) / "tests" / "smoke";
   fs::create_directories(dir);
   const std::string png = (dir / (name + ".png")).string();
@@ -32,8 +34,7 @@ SmokeResult smoke(const std::string& name, const std::string& extra) {
   fs::remove(png);
   fs::remove(report);
   const std::string cmd = "xvfb-run -a -s '-screen 0 1600x1000x24' " + std::string(PBM_BINARY_DIR) +
-                          "/app/pbm-studio --smoke " + PBM_SOURCE_DIR +
-                          "/scenes/interactive.json --frames 24 --screenshot " + png +
+                          "/app/pbm-studio --smoke " + scene + " --frames 24 --screenshot " + png +
                           " --report " + report + " " + extra;
   const test::CliResult run = test::run_command(cmd);
   SmokeResult r;
@@ -73,6 +74,51 @@ TEST(StudioSmoke, DragPullsTheBodyAndTheScreenshotShowsPanels) {
             12);
   EXPECT_GT(sky[0] + sky[1] + sky[2], 400) << "no lit viewport";
   EXPECT_GT(sky[2], sky[0]) << "the sky is bluish";
+}
+
+// Pixels within 20 per channel of the spring colour (0.95, 0.85, 0.2): closer than the yellow
+// fringes of ImGui's antialiased arrows.
+long spring_yellow(const RgbImage& image) {
+  long n = 0;
+  for (std::size_t k = 0; k + 2 < image.pixels.size(); k += 3) {
+    n += std::abs(image.pixels[k] - 242) < 20 && std::abs(image.pixels[k + 1] - 217) < 20 &&
+         std::abs(image.pixels[k + 2] - 51) < 20;
+  }
+  return n;
+}
+
+// The viewport draws the overlay layer only when View > Overlays is on, as `pbm render` does
+// with --overlays: interactive.json's spring is active at frame 24.
+TEST(StudioSmoke, OverlaysAreDrawnOnlyFromTheViewMenu) {
+  const SmokeResult clean = smoke("clean", "");
+  ASSERT_EQ(clean.code, 0) << clean.output;
+  const SmokeResult overlays = smoke("overlays", "--overlays");
+  ASSERT_EQ(overlays.code, 0) << overlays.output;
+  const fs::path dir = fs::path(PBM_BINARY_DIR) / "tests/smoke";
+  const long without = spring_yellow(read_png((dir / "clean.png").string()));
+  const long with = spring_yellow(read_png((dir / "overlays.png").string()));
+  std::printf("spring-yellow pixels: %ld without overlays, %ld with\n", without, with);
+  EXPECT_EQ(without, 0);
+  EXPECT_GT(with, 20);
+}
+
+// "View from scene camera" (on at start) plays the scene's camera tracks: the viewport's camera
+// at frame 24 is where the track puts the camera at that frame's time.
+TEST(StudioSmoke, TheSceneCameraPlaysItsTrack) {
+  const fs::path dir = fs::path(PBM_BINARY_DIR) / "tests/smoke";
+  fs::create_directories(dir);
+  nlohmann::json scene = nlohmann::json::parse(
+      std::ifstream(std::string(PBM_SOURCE_DIR) + "/scenes/interactive.json"));
+  scene["tracks"].push_back({{"target", "camera.position[0]"}, {"keys", {{0, 0}, {2, -20}}}});
+  const fs::path file = dir / "camera-track-scene.json";  // not the report
+  std::ofstream(file) << scene.dump(2);
+  const SmokeResult r = smoke("camera-track", "", file.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  ASSERT_EQ(r.report["frame"], 24);
+  const double t = r.report["time"];
+  EXPECT_NEAR(t, 0.8, 1e-9);
+  EXPECT_NEAR(r.report["camera"][0].get<double>(), -10.0 * t, 1e-4);
+  EXPECT_NEAR(r.report["camera"][1].get<double>(), -30.0, 1e-4);  // the scene's, untracked
 }
 
 }  // namespace

@@ -4,30 +4,23 @@
 #include <cmath>
 #include <numbers>
 
+#include <Eigen/Geometry>
+
 namespace pbm {
 
-Camera camera_from_scene(const CameraDef& def) {
+Camera camera_from_view(const draw::CameraView& view) {
   Camera c;
-  c.position = def.position.cast<float>();
-  c.target = def.target.cast<float>();
-  c.up = def.up.cast<float>();
-  c.fov = static_cast<float>(def.fov);
+  c.position = view.position;
+  c.target = view.target;
+  c.up = view.up;
+  c.fov = std::clamp(view.fov, 1.0f, 179.0f);
   return c;
 }
 
-Camera camera_from_drive(const Drive& drive) {
+Camera frame_bounds(const draw::Bounds& bounds, float aspect) {
   Camera c;
-  c.position = drive.camera_position.cast<float>();
-  c.target = drive.camera_target.cast<float>();
-  c.up = drive.camera_up.cast<float>();
-  c.fov = static_cast<float>(std::clamp(drive.camera_fov, 1.0, 179.0));
-  return c;
-}
-
-Camera frame_bodies(const Snapshot& snapshot, float aspect) {
-  Camera c;
-  if (snapshot.bodies.empty()) return c;
-  const Eigen::Vector3f lo = snapshot.bodies_min(), hi = snapshot.bodies_max();
+  if (bounds.empty()) return c;
+  const Eigen::Vector3f lo = bounds.min, hi = bounds.max;
   const Eigen::Vector3f centre = 0.5f * (lo + hi);
   const float radius = std::max(0.5f * (hi - lo).norm(), 0.1f);
   const float half_fov = 0.5f * c.fov * std::numbers::pi_v<float> / 180.0f;
@@ -37,6 +30,10 @@ Camera frame_bodies(const Snapshot& snapshot, float aspect) {
   c.target = centre;
   c.position = centre + distance * direction;
   return c;
+}
+
+Camera frame_focus(const draw::Snapshot& snapshot, float aspect) {
+  return frame_bounds(snapshot.focus, aspect);
 }
 
 Eigen::Matrix4f view_matrix(const Camera& camera) {

@@ -1,11 +1,10 @@
-// A look-at camera with a vertical field of view; the scene's, or one framing everything.
+// A look-at camera with a vertical field of view: the snapshot's (the scene's camera at the
+// snapshot's time), or one framing what the snapshot says to frame.
 #pragma once
 
 #include <Eigen/Core>
 
-#include "scene/scene.h"
-#include "sim/snapshot.h"
-#include "sim/tracks.h"
+#include "draw/snapshot.h"
 
 namespace pbm {
 
@@ -16,13 +15,14 @@ struct Camera {
   float fov = 40;  // vertical [degrees]
 };
 
-Camera camera_from_scene(const CameraDef& def);
-// The scene's camera as its tracks move it at the drive's time (sim/tracks.h).
-Camera camera_from_drive(const Drive& drive);
+// The view as a camera, its field of view clamped to [1, 179] degrees.
+Camera camera_from_view(const draw::CameraView& view);
 
-// Looks at the bodies' bounding box from the front-right and above, far enough that the box
-// fits the vertical field of view at the given aspect (width / height).
-Camera frame_bodies(const Snapshot& snapshot, float aspect);
+// Looks at the box from the front-right and above, far enough that it fits the vertical field
+// of view at the given aspect (width / height); the default camera for an empty box.
+Camera frame_bounds(const draw::Bounds& bounds, float aspect);
+// frame_bounds of the snapshot's focus (its moving objects).
+Camera frame_focus(const draw::Snapshot& snapshot, float aspect);
 
 Eigen::Matrix4f view_matrix(const Camera& camera);
 Eigen::Matrix4f perspective_matrix(float fov_degrees, float aspect, float near, float far);

@@ -26,9 +26,16 @@ GLuint compile(const gl::Functions& gl, GLenum type, const char* source, const c
 }  // namespace
 
 GLuint link_program(const gl::Functions& gl, const char* name) {
-  const GLuint vs = compile(gl, GL_VERTEX_SHADER, shader_source(std::string(name) + ".vert"), name);
+  return link_program(gl, name, name);
+}
+
+GLuint link_program(const gl::Functions& gl, const char* vertex, const char* fragment) {
+  const std::string name =
+      vertex == std::string(fragment) ? vertex : std::string(vertex) + "+" + fragment;
+  const GLuint vs =
+      compile(gl, GL_VERTEX_SHADER, shader_source(std::string(vertex) + ".vert"), name.c_str());
   const GLuint fs =
-      compile(gl, GL_FRAGMENT_SHADER, shader_source(std::string(name) + ".frag"), name);
+      compile(gl, GL_FRAGMENT_SHADER, shader_source(std::string(fragment) + ".frag"), name.c_str());
   const GLuint program = gl.CreateProgram();
   gl.AttachShader(program, vs);
   gl.AttachShader(program, fs);
@@ -41,7 +48,7 @@ GLuint link_program(const gl::Functions& gl, const char* name) {
     char log[2048] = {};
     gl.GetProgramInfoLog(program, sizeof(log), nullptr, log);
     gl.DeleteProgram(program);
-    throw std::runtime_error(std::string("shader program ") + name + " does not link: " + log);
+    throw std::runtime_error("shader program " + name + " does not link: " + log);
   }
   return program;
 }

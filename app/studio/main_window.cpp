@@ -100,8 +100,10 @@ MainWindow::MainWindow(bool smoke) : smoke_(smoke) {
                                   [this](bool on) { studio_.use_scene_camera = on; });
   scene_camera_->setCheckable(true);
   scene_camera_->setChecked(true);
-  wireframe_ = view->addAction("&Wireframe", this, [this](bool on) { studio_.wireframe = on; });
-  wireframe_->setCheckable(true);
+  // The editor's layer of the snapshot (draw::Layer::overlay), as `pbm render --overlays`.
+  overlays_ = view->addAction("&Overlays (springs, constraints, wireframe)", this,
+                              [this](bool on) { studio_.overlays = on; });
+  overlays_->setCheckable(true);
   QAction* msaa = view->addAction("&Antialiasing (4x)", this,
                                   [this](bool on) { studio_.samples = on ? 4 : 2; });
   msaa->setCheckable(true);
@@ -197,6 +199,10 @@ bool MainWindow::open_scene(const QString& path) {
 
 void MainWindow::new_scene() {
   start(default_scene(), QString());
+}
+
+void MainWindow::trigger_overlays() {
+  overlays_->trigger();
 }
 
 std::string MainWindow::edit(const std::string& pointer, const json& value,

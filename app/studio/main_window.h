@@ -29,6 +29,8 @@ class MainWindow : public QMainWindow, public StudioActions {
   Studio& studio() { return studio_; }
   // Offers the autosave of a session that did not end cleanly (not in smoke mode).
   void offer_recovery();
+  // What View > Overlays does (smoke runs).
+  void trigger_overlays();
 
   std::string edit(const std::string& pointer, const nlohmann::json& value,
                    const std::string& label) override;
@@ -60,7 +62,7 @@ class MainWindow : public QMainWindow, public StudioActions {
   bool previous_session_crashed_ = false;
   QTimer tick_, autosave_timer_;
   QMenu* recent_menu_ = nullptr;
-  QAction *undo_ = nullptr, *redo_ = nullptr, *scene_camera_ = nullptr, *wireframe_ = nullptr;
+  QAction *undo_ = nullptr, *redo_ = nullptr, *scene_camera_ = nullptr, *overlays_ = nullptr;
 };
 
 // Where autosaves and the crash marker live (the user's state folder).

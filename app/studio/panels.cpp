@@ -123,6 +123,19 @@ void field(Studio& studio, StudioActions& actions, const std::string& key, const
   ImGui::PopID();
 }
 
+// The scene constraint of each point constraint of the model, in model order
+// (FrameStats::constraint_violations): a point constraint gives one, a hinge two, in scene order.
+std::vector<std::string> point_constraint_names(const Scene& scene) {
+  std::vector<std::string> names;
+  for (std::size_t c = 0; c < scene.constraints.size(); ++c) {
+    const ConstraintDef& def = scene.constraints[c];
+    const std::string name = def.name.empty() ? "constraint " + std::to_string(c) : def.name;
+    const int points = def.kind == ConstraintKind::hinge ? 2 : 1;
+    for (int k = 0; k < points; ++k) names.push_back(name);
+  }
+  return names;
+}
+
 const char* const kCollections[] = {"bodies", "obstacles", "springs", "constraints", "tracks"};
 const SelectionKind kKinds[] = {SelectionKind::body, SelectionKind::obstacle, SelectionKind::spring,
                                 SelectionKind::constraint, SelectionKind::track};
@@ -348,19 +361,18 @@ void stats(Studio& studio) {
     cost.push_back(ms);
   }
   // Per-constraint violation, the worst first (ch. 7: |C| should decay as e^(-alpha t)).
-  if (studio.snapshot && !studio.snapshot->constraints.empty() && studio.status.scene) {
-    std::vector<const ConstraintSnapshot*> worst;
-    for (const ConstraintSnapshot& c : studio.snapshot->constraints) worst.push_back(&c);
+  const VecX& violations = f.constraint_violations;
+  if (violations.size() > 0 && studio.status.scene) {
+    const std::vector<std::string> names = point_constraint_names(*studio.status.scene);
+    std::vector<int> worst(static_cast<std::size_t>(violations.size()));
+    for (std::size_t k = 0; k < worst.size(); ++k) worst[k] = static_cast<int>(k);
     std::stable_sort(worst.begin(), worst.end(),
-                     [](const auto* a, const auto* b) { return a->violation > b->violation; });
-    const auto& defs = studio.status.scene->constraints;
+                     [&](int a, int b) { return violations[a] > violations[b]; });
     ImGui::Text("constraints: %zu points, worst |C|:", worst.size());
     for (std::size_t k = 0; k < std::min<std::size_t>(5, worst.size()); ++k) {
-      const int source = worst[k]->source;
-      const std::string name = source >= 0 && source < static_cast<int>(defs.size())
-                                   ? defs[source].name
-                                   : std::to_string(source);
-      ImGui::Text("  %-18s %.3g m", name.c_str(), worst[k]->violation);
+      const int l = worst[k];
+      const std::string name = l < static_cast<int>(names.size()) ? names[l] : std::to_string(l);
+      ImGui::Text("  %-18s %.3g m", name.c_str(), violations[l]);
     }
   }
   const ImVec2 size(ImGui::GetContentRegionAvail().x, 40);

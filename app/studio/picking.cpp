@@ -1,6 +1,7 @@
 #include "picking.h"
 
 #include <cmath>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -20,13 +21,16 @@ Ray pixel_ray(const Camera& camera, float x, float y, int width, int height) {
   return {camera.position, d.normalized()};
 }
 
-std::optional<Pick> pick_body(const Snapshot& snapshot, const Ray& ray) {
+std::optional<Pick> pick_body(const draw::Snapshot& snapshot, const Ray& ray) {
   std::optional<Pick> best;
-  for (std::size_t b = 0; b < snapshot.bodies.size(); ++b) {
-    const BodySnapshot& body = snapshot.bodies[b];
-    for (const std::array<int, 3>& t : body.triangles) {
-      const Vec3f& p0 = body.positions[t[0]];
-      const Vec3f e1 = body.positions[t[1]] - p0, e2 = body.positions[t[2]] - p0;
+  std::vector<Vec3f> world;
+  for (const draw::Mesh& mesh : snapshot.meshes) {
+    if (mesh.pick < 0 || !mesh.positions || !mesh.topology) continue;
+    world.clear();
+    for (const Vec3f& x : *mesh.positions) world.push_back(mesh.rotation * x + mesh.offset);
+    for (const std::array<int, 3>& t : mesh.topology->triangles) {
+      const Vec3f& p0 = world[t[0]];
+      const Vec3f e1 = world[t[1]] - p0, e2 = world[t[2]] - p0;
       const Vec3f h = ray.direction.cross(e2);
       const float det = e1.dot(h);
       if (std::abs(det) < 1e-12f) continue;
@@ -40,10 +44,19 @@ std::optional<Pick> pick_body(const Snapshot& snapshot, const Ray& ray) {
       if (distance <= 0 || (best && distance >= best->distance)) continue;
       const float w[3] = {1 - u - v, u, v};
       const int corner = w[0] >= w[1] && w[0] >= w[2] ? 0 : (w[1] >= w[2] ? 1 : 2);
-      best = Pick{static_cast<int>(b), t[corner], ray.origin + distance * ray.direction, distance};
+      best = Pick{mesh.pick, t[corner], ray.origin + distance * ray.direction, distance};
     }
   }
   return best;
+}
+
+draw::Bounds pick_bounds(const draw::Snapshot& snapshot, int pick) {
+  draw::Bounds bounds;
+  for (const draw::Mesh& mesh : snapshot.meshes) {
+    if (mesh.pick != pick || !mesh.positions) continue;
+    for (const Vec3f& x : *mesh.positions) bounds.add(mesh.rotation * x + mesh.offset);
+  }
+  return bounds;
 }
 
 Vec3f drag_target(const Camera& camera, const Ray& ray, const Vec3f& point) {

@@ -1,5 +1,6 @@
-// Mouse picking in the viewport: a ray through a pixel against every body triangle of a
-// Snapshot, and the drag plane of the mouse spring (sec. 6.4).
+// Mouse picking in the viewport: a ray through a pixel against every triangle of the snapshot's
+// pickable meshes (draw::Mesh::pick >= 0: the bodies), and the drag plane of the mouse spring
+// (sec. 6.4).
 #pragma once
 
 #include <optional>
@@ -7,7 +8,7 @@
 #include <Eigen/Core>
 
 #include "camera.h"
-#include "sim/snapshot.h"
+#include "draw/snapshot.h"
 
 namespace pbm {
 
@@ -20,14 +21,17 @@ struct Ray {
 Ray pixel_ray(const Camera& camera, float x, float y, int width, int height);
 
 struct Pick {
-  int body = -1;
-  int node = -1;          // the hit triangle's corner nearest to the hit
+  int body = -1;          // the mesh's pick
+  int node = -1;          // the hit triangle's corner nearest to the hit (a mesh vertex)
   Eigen::Vector3f point;  // world hit point
   float distance = 0;     // along the ray
 };
 
-// The nearest hit of the ray on any body's surface (Moller-Trumbore), if any.
-std::optional<Pick> pick_body(const Snapshot& snapshot, const Ray& ray);
+// The nearest hit of the ray on any pickable mesh (Moller-Trumbore), if any.
+std::optional<Pick> pick_body(const draw::Snapshot& snapshot, const Ray& ray);
+
+// World bounds of the meshes whose pick is `pick` (empty if there are none): what F frames.
+draw::Bounds pick_bounds(const draw::Snapshot& snapshot, int pick);
 
 // Where the ray meets the plane through `point` facing the camera (normal = view direction):
 // the mouse spring's target while dragging.

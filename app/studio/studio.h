@@ -39,8 +39,8 @@ class StudioActions {
 
 struct Studio {
   std::unique_ptr<Runner> runner;
-  RunnerStatus status;                       // refreshed every UI frame
-  std::shared_ptr<const Snapshot> snapshot;  // latest taken
+  RunnerStatus status;                             // refreshed every UI frame
+  std::shared_ptr<const draw::Snapshot> snapshot;  // latest taken
   EditHistory history;
   std::string path;  // scene file ("" for a new scene)
   std::uint64_t saved_revision = 0;
@@ -49,8 +49,8 @@ struct Studio {
   Camera camera;
   bool use_scene_camera = true;
   bool camera_initialized = false;
-  bool wireframe = false;
-  int samples = 2;  // viewport MSAA: llvmpipe pays per sample
+  bool overlays = false;  // springs, constraints, the wireframe (View menu)
+  int samples = 2;        // viewport MSAA: llvmpipe pays per sample
   double speed = 1.0;
   std::deque<StatsSample> plot;  // the last seconds
   int last_plotted_frame = -1;

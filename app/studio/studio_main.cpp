@@ -22,13 +22,14 @@ struct SmokeOptions {
   QString scene, screenshot, report;
   int frames = 0;
   std::optional<QLineF> drag;
+  bool overlays = false;  // View > Overlays on
 };
 
 int usage(const char* why) {
   std::cerr << "error: " << why
             << "\nusage: pbm-studio [scene.json]\n"
                "       pbm-studio --smoke <scene.json> --frames N [--drag x0,y0:x1,y1] "
-               "--screenshot out.png [--report out.json]\n";
+               "[--overlays] --screenshot out.png [--report out.json]\n";
   return 2;
 }
 
@@ -100,13 +101,18 @@ class SmokeRun : public QObject {
       return fail("cannot write the screenshot " + options_.screenshot.toStdString());
     }
     if (!options_.report.isEmpty()) {
-      nlohmann::json report = {{"frame", window_.studio().status.frame},
-                               {"bodies", nlohmann::json::array()}};
+      const pbm::Camera camera = window_.viewport()->view_camera();
+      nlohmann::json report = {
+          {"frame", window_.studio().status.frame},
+          {"time", window_.studio().snapshot ? window_.studio().snapshot->time : 0.0},
+          {"camera", {camera.position.x(), camera.position.y(), camera.position.z()}},
+          {"bodies", nlohmann::json::array()}};
       if (const auto& snap = window_.studio().snapshot) {
-        for (const pbm::BodySnapshot& body : snap->bodies) {
+        for (const pbm::draw::Mesh& body : snap->meshes) {
+          if (body.pick < 0 || !body.positions) continue;  // the bodies are the pickable meshes
           Eigen::Vector3f c = Eigen::Vector3f::Zero();
-          for (const Eigen::Vector3f& p : body.positions) c += p;
-          c /= static_cast<float>(std::max<std::size_t>(1, body.positions.size()));
+          for (const Eigen::Vector3f& p : *body.positions) c += body.rotation * p + body.offset;
+          c /= static_cast<float>(std::max<std::size_t>(1, body.positions->size()));
           report["bodies"].push_back({{"name", body.name}, {"center", {c.x(), c.y(), c.z()}}});
         }
       }
@@ -166,6 +172,8 @@ int main(int argc, char** argv) {
       const QStringList p1 = ends.size() == 2 ? ends[1].split(',') : QStringList();
       if (p0.size() != 2 || p1.size() != 2) return usage("--drag needs x0,y0:x1,y1");
       smoke->drag = QLineF(p0[0].toDouble(), p0[1].toDouble(), p1[0].toDouble(), p1[1].toDouble());
+    } else if (a == "--overlays" && smoke) {
+      smoke->overlays = true;
     } else if (a == "--screenshot" && smoke) {
       auto v = value("screenshot");
       if (!v) return usage("--screenshot needs a file");
@@ -189,6 +197,7 @@ int main(int argc, char** argv) {
   window.show();
   if (smoke) {
     if (!window.open_scene(smoke->scene)) return 2;
+    if (smoke->overlays) window.trigger_overlays();
     SmokeRun run(window, *smoke);
     QApplication::exec();
     return run.result();

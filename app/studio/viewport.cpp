@@ -121,20 +121,20 @@ void Viewport::refresh() {
 }
 
 Camera Viewport::view_camera() const {
-  if (studio_.use_scene_camera && studio_.status.scene && studio_.status.scene->camera) {
-    return camera_from_scene(*studio_.status.scene->camera);
+  if (studio_.use_scene_camera && studio_.snapshot && studio_.snapshot->camera) {
+    return camera_from_view(*studio_.snapshot->camera);
   }
   return studio_.camera;
 }
 
 void Viewport::frame_selection() {
   if (!studio_.snapshot) return;
-  Snapshot only = *studio_.snapshot;
-  if (studio_.selection.kind == SelectionKind::body && studio_.selection.index >= 0 &&
-      studio_.selection.index < static_cast<int>(only.bodies.size())) {
-    only.bodies = {only.bodies[studio_.selection.index]};
+  draw::Bounds bounds = studio_.snapshot->focus;
+  if (studio_.selection.kind == SelectionKind::body) {
+    const draw::Bounds only = pick_bounds(*studio_.snapshot, studio_.selection.index);
+    if (!only.empty()) bounds = only;
   }
-  studio_.camera = frame_bodies(only, static_cast<float>(width()) / std::max(1, height()));
+  studio_.camera = frame_bounds(bounds, static_cast<float>(width()) / std::max(1, height()));
   studio_.use_scene_camera = false;
   update();
 }
@@ -142,10 +142,9 @@ void Viewport::frame_selection() {
 void Viewport::paintGL() {
   refresh();
   if (!studio_.camera_initialized && studio_.snapshot) {
-    studio_.camera =
-        studio_.status.scene && studio_.status.scene->camera
-            ? camera_from_scene(*studio_.status.scene->camera)
-            : frame_bodies(*studio_.snapshot, static_cast<float>(width()) / std::max(1, height()));
+    const float aspect = static_cast<float>(width()) / std::max(1, height());
+    studio_.camera = studio_.snapshot->camera ? camera_from_view(*studio_.snapshot->camera)
+                                              : frame_focus(*studio_.snapshot, aspect);
     studio_.camera_initialized = true;
   }
   const qreal ratio = devicePixelRatioF();
@@ -156,7 +155,7 @@ void Viewport::paintGL() {
     options.width = w;
     options.height = h;
     options.samples = studio_.samples;
-    options.wireframe = studio_.wireframe;
+    options.overlays = studio_.overlays;
     renderer_->render(*studio_.snapshot, view_camera(), options);
     renderer_->present(defaultFramebufferObject());
   } else {

@@ -27,6 +27,10 @@ class Viewport : public QOpenGLWidget {
   void frame_selection();
   // Pulls the runner's latest snapshot and status into the Studio (UI thread, every tick).
   void refresh();
+  // What the viewport draws from: the latest snapshot's camera (the scene's, its tracks at that
+  // frame's time) while View > View from scene camera is on and the scene has one, else the
+  // user's.
+  Camera view_camera() const;
 
  protected:
   void initializeGL() override;
@@ -39,7 +43,6 @@ class Viewport : public QOpenGLWidget {
   void keyReleaseEvent(QKeyEvent* event) override;
 
  private:
-  Camera view_camera() const;
   bool imgui_wants_mouse() const;
   void set_mouse(QMouseEvent* event, bool down);
 

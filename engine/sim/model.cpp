@@ -144,6 +144,7 @@ Model build_model(const Scene& scene) {
       if (end.body >= 0) model.body_collisions.constrained[end.body] = 1;
     }
   }
+  model.snapshot_geometry = build_snapshot_geometry(model.bodies, model.obstacles);
   return model;
 }
 

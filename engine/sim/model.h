@@ -16,6 +16,7 @@
 #include "core/types.h"
 #include "deform/body_model.h"
 #include "scene/scene.h"
+#include "sim/snapshot_geometry.h"
 
 namespace pbm {
 
@@ -52,6 +53,7 @@ struct Model {
   int n_q = 0, n_v = 0;
   // Warnings about the solvers for every frame's stats, '; '-separated (constraints.notes).
   std::string notes;
+  SnapshotGeometry snapshot_geometry;  // shared by every snapshot (sim/snapshot.h), drawing only
 };
 
 // Throws pbm::Error (file, path) when the scene cannot be compiled.

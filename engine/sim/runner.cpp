@@ -100,7 +100,7 @@ int RunnerCore::last_frame() const {
 }
 
 Snapshot RunnerCore::snapshot() {
-  return make_snapshot(sim_->model, sim_->state, sim_->inputs, sim_->ws);
+  return make_snapshot(*sim_);
 }
 
 std::string RunnerCore::apply(const Command& command) {

@@ -1,70 +1,30 @@
-// What a renderer needs of one moment (DESIGN §4): deformed node positions with their triangles,
-// materials, obstacles and springs. Plain data in float, copyable across threads; no engine
-// internals, so the renderer depends on this header alone.
+// make_snapshot: one moment of a simulation as plain drawables (draw/snapshot.h), what the
+// renderer, the studio's picking and the exporters read (docs/architecture.md, "Snapshot").
+// Every present subsystem adds its own drawables (its add_drawables hook, sim/subsystem.h):
+//   bodies       one smooth Mesh each (pick = body index; positions of this moment, topology
+//                shared from Model::snapshot_geometry); springs as overlay Lines with end points
+//   obstacles    planes, boxes as Primitives, mesh obstacles as flat Meshes where their tracks
+//                put them
+//   constraints  overlay Lines from end a to end b, green when held, red at |C| >= 1 cm
+// The bodies' element edges are their topology's edges (the renderer's overlay pass). The
+// scene's camera with its tracks applied; focus = the bodies' nodes.
 #pragma once
 
-#include <array>
-#include <memory>
-#include <string>
-#include <vector>
-
-#include <Eigen/Core>
-
+#include "draw/snapshot.h"
 #include "sim/inputs.h"
-#include "sim/model.h"
+#include "sim/simulation.h"
 #include "sim/state.h"
 #include "sim/world.h"
 
 namespace pbm {
 
-using Vec3f = Eigen::Vector3f;
+// The engine's name for it (runner, tests); the type lives in draw/ with no engine types.
+using Snapshot = draw::Snapshot;
 
-struct BodySnapshot {
-  std::string name;
-  std::vector<Vec3f> positions;               // world, one per node [m]
-  std::vector<std::array<int, 3>> triangles;  // counter-clockwise seen from outside
-  std::vector<std::array<int, 2>> edges;      // of the finite elements (fig. 4.1 / 4.2)
-  Vec3f color{0.8f, 0.3f, 0.3f};
-  float roughness = 0.5f;
-};
-
-struct ObstacleSnapshot {
-  ObstacleKind kind = ObstacleKind::plane;
-  Vec3f point = Vec3f::Zero();                             // plane point / box centre, now
-  Vec3f normal{0, 0, 1};                                   // plane
-  Eigen::Vector2f size{20, 20};                            // plane: drawn extent
-  Eigen::Matrix3f rotation = Eigen::Matrix3f::Identity();  // box axes
-  Vec3f half_extents{1, 1, 1};
-  std::shared_ptr<const MeshObstacle> mesh;  // mesh obstacles: world triangles at load
-  // Mesh obstacles moved by tracks: draw each vertex x0 of `mesh` at mesh_rotation x0 +
-  // mesh_offset.
-  Eigen::Matrix3f mesh_rotation = Eigen::Matrix3f::Identity();
-  Vec3f mesh_offset = Vec3f::Zero();
-};
-
-struct SpringSnapshot {
-  Vec3f from = Vec3f::Zero(), to = Vec3f::Zero();  // body point, target
-};
-
-// A point-to-point constraint (ch. 7) between its two current points; violation = |C| [m].
-struct ConstraintSnapshot {
-  Vec3f a = Vec3f::Zero(), b = Vec3f::Zero();
-  float violation = 0;
-  int source = 0;  // index into Scene::constraints (a hinge's two points share one)
-};
-
-struct Snapshot {
-  double time = 0;
-  std::vector<BodySnapshot> bodies;
-  std::vector<ObstacleSnapshot> obstacles;
-  std::vector<SpringSnapshot> springs;
-  std::vector<ConstraintSnapshot> constraints;
-  // Axis-aligned bounds of the bodies [m].
-  Vec3f bodies_min() const;
-  Vec3f bodies_max() const;
-};
-
-// The snapshot of state. Computes the kinematics in ws (its caches stay valid).
-Snapshot make_snapshot(const Model& model, const State& state, const Inputs& inputs, Workspace& ws);
+// The snapshot of state with the inputs of the moment. Computes the kinematics and the drive in
+// ws (results of later steps do not depend on it: docs/architecture.md, "Determinism").
+draw::Snapshot make_snapshot(const World& world, const Inputs& inputs, const State& state,
+                             Workspace& ws);
+draw::Snapshot make_snapshot(Simulation& sim);
 
 }  // namespace pbm

@@ -5,8 +5,16 @@
 #include "deform/body_dynamics.h"
 #include "deform/nodal_loads.h"
 #include "deform/shape_parameters.h"
+#include "sim/snapshot_geometry.h"
 
 namespace pbm::stages {
+
+namespace {
+
+// The overlay's spring colour (the renderer's before springs became drawables).
+const draw::Vec3f kSpringColor(0.95f, 0.85f, 0.2f);
+
+}  // namespace
 
 bool bodies_present(const Model& model) {
   return !model.bodies.empty();
@@ -190,6 +198,39 @@ std::string describe_nan(const Model& model, const State& s) {
 std::string describe_body_failure(const Model& model, const State& state) {
   if (!state.q.allFinite() || !state.v.allFinite()) return describe_nan(model, state);
   return describe_invalid_shape(model, state);
+}
+
+void add_body_drawables(const Model& model, const Inputs& inputs, const State& state, Workspace& ws,
+                        draw::Snapshot& snap) {
+  (void)inputs;
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    const BodyModel& body = model.bodies[b];
+    BodyWorkspace& bw = ws.bodies[b];
+    bw.q_s_rest = ws.drive.q_s0[b];
+    compute_body_kinematics(body, body_q(body, state.q), body_v(body, state.v), bw, false);
+    auto positions = std::make_shared<std::vector<draw::Vec3f>>(bw.x.size());
+    for (std::size_t i = 0; i < bw.x.size(); ++i) {
+      (*positions)[i] = bw.x[i].cast<float>();
+      snap.focus.add((*positions)[i]);
+    }
+    draw::Mesh& mesh = snap.meshes.emplace_back();
+    mesh.name = body.name;
+    mesh.pick = static_cast<int>(b);
+    mesh.positions = std::move(positions);
+    mesh.topology = model.snapshot_geometry.body_topology[b];
+    mesh.material = {body.color.cast<float>(), static_cast<float>(body.roughness)};
+    mesh.shading = draw::Shading::smooth;
+  }
+  // Springs active at this time, from the body point to the target (overlay).
+  draw::Lines springs{.end_points = true, .layer = draw::Layer::overlay};
+  for (std::size_t s = 0; s < model.springs.size(); ++s) {
+    const SpringModel& spring = model.springs[s];
+    if (state.time < spring.t_begin || state.time > spring.t_end) continue;
+    springs.points.push_back(ws.bodies[spring.body].x[spring.node].cast<float>());
+    springs.points.push_back(ws.drive.spring_target[s].cast<float>());
+    springs.colors.push_back(kSpringColor);
+  }
+  if (!springs.points.empty()) snap.lines.push_back(std::move(springs));
 }
 
 }  // namespace pbm::stages

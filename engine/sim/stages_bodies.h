@@ -24,5 +24,7 @@ void measure_bodies(const Model& model, const State& state, Workspace& ws, Frame
 Real body_energy_allowance(const Model& model, const Inputs& inputs, const State& state, Real t_end,
                            Workspace& ws);
 std::string describe_body_failure(const Model& model, const State& state);
+void add_body_drawables(const Model& model, const Inputs& inputs, const State& state, Workspace& ws,
+                        draw::Snapshot& snap);
 
 }  // namespace pbm::stages

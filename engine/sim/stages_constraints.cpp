@@ -1,11 +1,23 @@
 #include "sim/stages_constraints.h"
 
+#include <algorithm>
+
 #include "constrain/constraint_forces.h"
 #include "constrain/hinge_spring.h"
+#include "constrain/point_constraint.h"
 
 namespace pbm::stages {
 
 namespace {
+
+constexpr float kConstraintRedViolation = 0.01f;  // [m]: |C| drawn fully red
+constexpr float kConstraintEndSize = 5;           // [pixels], smaller than a spring's ends
+
+// Green while held, turning red as |C| reaches kConstraintRedViolation.
+draw::Vec3f constraint_color(float violation) {
+  const float t = std::clamp(violation / kConstraintRedViolation, 0.0f, 1.0f);
+  return {0.25f + 0.7f * t, 0.9f - 0.7f * t, 0.35f - 0.15f * t};
+}
 
 ConstrainedSystem system_of(const Model& model) {
   return {model.constraints, model.bodies};
@@ -40,6 +52,24 @@ Real constraint_allowance(const Model& model, const Inputs& inputs, const State&
   (void)t_end;
   // Assembling parts (7.16) gain the kinetic energy Baumgarte's feedback gives them.
   return constraint_energy_allowance(system_of(model), state.q, state.v, ws.bodies);
+}
+
+void add_constraint_drawables(const Model& model, const Inputs& inputs, const State& state,
+                              Workspace& ws, draw::Snapshot& snap) {
+  (void)inputs;
+  // Where each end of a point constraint is now (the bodies' kinematics are current): a node, a
+  // point fixed in the body frame, or a world anchor. Drawn over the parts they join.
+  const ConstrainedSystem system = system_of(model);
+  draw::Lines lines{
+      .end_points = true, .end_point_size = kConstraintEndSize, .layer = draw::Layer::overlay};
+  for (const PointConstraintModel& c : model.constraints.points) {
+    const Vec3 a = constraint_end_position(c.ends[0], ws.bodies, system, state.q);
+    const Vec3 b = constraint_end_position(c.ends[1], ws.bodies, system, state.q);
+    lines.points.push_back(a.cast<float>());
+    lines.points.push_back(b.cast<float>());
+    lines.colors.push_back(constraint_color(static_cast<float>((a - b).norm())));
+  }
+  if (!lines.points.empty()) snap.lines.push_back(std::move(lines));
 }
 
 }  // namespace pbm::stages

@@ -14,5 +14,7 @@ void constraint_rates(const RateContext& c);  // constraints: (7.3), (7.4)
 void measure_constraints(const Model& model, const State& state, Workspace& ws, FrameStats& stats);
 Real constraint_allowance(const Model& model, const Inputs& inputs, const State& state, Real t_end,
                           Workspace& ws);
+void add_constraint_drawables(const Model& model, const Inputs& inputs, const State& state,
+                              Workspace& ws, draw::Snapshot& snap);
 
 }  // namespace pbm::stages

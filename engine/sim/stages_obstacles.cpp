@@ -6,6 +6,13 @@
 
 namespace pbm::stages {
 
+namespace {
+
+// The obstacles' look (the renderer's before obstacles became drawables; the goldens hold it).
+const draw::Material kObstacleMaterial{{0.45f, 0.52f, 0.62f}, 0.6f};
+
+}  // namespace
+
 bool obstacles_present(const Model& model) {
   return !model.obstacles.empty();
 }
@@ -65,6 +72,42 @@ Real obstacle_energy_allowance(const Model& model, const Inputs& inputs, const S
   Real mass = 0;
   for (const BodyModel& body : model.bodies) mass += body.mass;
   return 0.5 * mass * (2 * w) * (2 * w);
+}
+
+void add_obstacle_drawables(const Model& model, const Inputs& inputs, const State& state,
+                            Workspace& ws, draw::Snapshot& snap) {
+  (void)inputs;
+  (void)state;
+  // Where the tracks put each obstacle at this time (make_snapshot's drive placed them).
+  for (std::size_t k = 0; k < ws.drive.obstacles.size(); ++k) {
+    const ObstacleModel& o = ws.drive.obstacles[k];
+    switch (o.kind) {
+      case ObstacleKind::plane:
+        snap.planes.push_back(
+            {o.point.cast<float>(), o.normal.cast<float>(), o.size.cast<float>()});
+        break;
+      case ObstacleKind::box:
+        snap.primitives.push_back({.shape = draw::PrimitiveShape::box,
+                                   .center = o.point.cast<float>(),
+                                   .rotation = o.rotation.cast<float>(),
+                                   .half_size = o.half_extents.cast<float>(),
+                                   .material = kObstacleMaterial});
+        break;
+      case ObstacleKind::mesh: {
+        draw::Mesh& mesh = snap.meshes.emplace_back();
+        mesh.name = o.name;
+        mesh.positions = model.snapshot_geometry.obstacle_positions[k];
+        mesh.topology = model.snapshot_geometry.obstacle_topology[k];
+        mesh.material = kObstacleMaterial;
+        mesh.shading = draw::Shading::flat;
+        // x = R R0^T (x0 - p0) + p: the load placement's vertices carried to the current one.
+        const Mat3 motion = o.rotation * o.mesh->rotation.transpose();
+        mesh.rotation = motion.cast<float>();
+        mesh.offset = (o.point - motion * o.mesh->position).cast<float>();
+        break;
+      }
+    }
+  }
 }
 
 }  // namespace pbm::stages

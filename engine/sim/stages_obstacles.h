@@ -14,5 +14,7 @@ void obstacle_collisions(const SubstepContext& c);  // obstacle_collisions: proj
 void measure_obstacles(const Model& model, const State& state, Workspace& ws, FrameStats& stats);
 Real obstacle_energy_allowance(const Model& model, const Inputs& inputs, const State& state,
                                Real t_end, Workspace& ws);
+void add_obstacle_drawables(const Model& model, const Inputs& inputs, const State& state,
+                            Workspace& ws, draw::Snapshot& snap);
 
 }  // namespace pbm::stages

@@ -25,7 +25,8 @@ constexpr Subsystem kTable[] = {
                   {S::velocity_split, stages::body_velocity_split, stages::velocity_split_needed}}},
      .measure = stages::measure_bodies,
      .energy_allowance = stages::body_energy_allowance,
-     .describe_failure = stages::describe_body_failure},
+     .describe_failure = stages::describe_body_failure,
+     .add_drawables = stages::add_body_drawables},
     {.id = SubsystemId::body_collisions,
      .present = stages::body_collisions_present,
      .size_workspace = stages::size_body_collisions,
@@ -35,7 +36,8 @@ constexpr Subsystem kTable[] = {
      .rates = {{{S::contact_forces, stages::obstacle_forces}}},
      .substep = {{{S::obstacle_collisions, stages::obstacle_collisions}}},
      .measure = stages::measure_obstacles,
-     .energy_allowance = stages::obstacle_energy_allowance},
+     .energy_allowance = stages::obstacle_energy_allowance,
+     .add_drawables = stages::add_obstacle_drawables},
     {.id = SubsystemId::self_collision,
      .present = stages::self_collision_present,
      .size_workspace = stages::size_body_collisions,
@@ -46,7 +48,8 @@ constexpr Subsystem kTable[] = {
      .size_workspace = stages::size_constraints,
      .rates = {{{S::constraints, stages::constraint_rates}}},
      .measure = stages::measure_constraints,
-     .energy_allowance = stages::constraint_allowance},
+     .energy_allowance = stages::constraint_allowance,
+     .add_drawables = stages::add_constraint_drawables},
 };
 
 }  // namespace
