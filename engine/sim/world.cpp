@@ -124,8 +124,12 @@ bool advance_substep(const World& world, const Inputs& inputs, State& state, Rea
   ws.body_collision_stats = BodyCollisionStats{};
   auto hook = world.substeps.begin();
   for (; hook != world.substeps.end() && hook->stage < StepStage::integrate; ++hook) {
-    const StageScope scope(ws.clock, hook->stage, hook->subsystem);
-    hook->run(context);
+    if (observer) (*observer)(hook->stage, hook->subsystem, false, state, ws);
+    {
+      const StageScope scope(ws.clock, hook->stage, hook->subsystem);
+      hook->run(context);
+    }
+    if (observer) (*observer)(hook->stage, hook->subsystem, true, state, ws);
   }
   IntegrationStats istats;
   bool ok = true;
@@ -155,8 +159,12 @@ bool advance_substep(const World& world, const Inputs& inputs, State& state, Rea
   // After the step: unit quaternions, then collisions between bodies (5.2.2), with obstacles
   // (5.2.1: no node is left inside an obstacle by another body), within a body.
   for (; hook != world.substeps.end(); ++hook) {
-    const StageScope scope(ws.clock, hook->stage, hook->subsystem);
-    hook->run(context);
+    if (observer) (*observer)(hook->stage, hook->subsystem, false, state, ws);
+    {
+      const StageScope scope(ws.clock, hook->stage, hook->subsystem);
+      hook->run(context);
+    }
+    if (observer) (*observer)(hook->stage, hook->subsystem, true, state, ws);
   }
   state.contact_nodes = ws.contacts;
   return ok && all_finite(state);

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/function_ref.h"
 #include "sim/frame_stats.h"
 #include "sim/inputs.h"
 #include "sim/model.h"
