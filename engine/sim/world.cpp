@@ -118,7 +118,7 @@ void init_workspace(const World& world, Workspace& ws) {
 }
 
 bool advance_substep(const World& world, const Inputs& inputs, State& state, Real dt, Workspace& ws,
-                     int& evaluations) {
+                     int& evaluations, const StageObserver* observer) {
   const Model& model = *world.model;
   const SubstepContext context{model, inputs, ws, state, dt};
   ws.body_collision_stats = BodyCollisionStats{};

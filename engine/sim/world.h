@@ -60,11 +60,17 @@ struct FrameResult {
 FrameResult advance_frame(const World& world, const Inputs& inputs, State& state, Workspace& ws,
                           FrameStats& stats);
 
+// Called before and after every hook of a substep (after = true once it ran), with the state
+// it corrects: a test measures what one stage of the engine's own step does (the collision
+// stage's momentum, say) without running a copy of it.
+using StageObserver = FunctionRef<void(StepStage stage, SubsystemId subsystem, bool after,
+                                       const State& state, Workspace& ws)>;
+
 // One substep of size dt with the configured integrator, then the corrections after it
 // (renormalization, collisions). Returns false if the integrator failed (rk45 step underflow) or
-// the state is not finite.
+// the state is not finite. `observer`, when given, sees every substep hook (not the rates).
 bool advance_substep(const World& world, const Inputs& inputs, State& state, Real dt, Workspace& ws,
-                     int& evaluations);
+                     int& evaluations, const StageObserver* observer = nullptr);
 
 // Energies, distances and per-body and per-constraint numbers of a state (time, energies, bodies,
 // min_distance, constraint violations of stats); leaves ws.drive at state.time and the bodies'
