@@ -24,10 +24,6 @@ const Vec3f kFillDirection = Vec3f(-0.7f, 0.4f, 0.3f).normalized();
 const Vec3f kWireColor(0.08f, 0.08f, 0.1f);
 const Vec3f kGroundAlbedo(0.62f, 0.60f, 0.56f);
 
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
 }  // namespace
 
 struct Renderer::Impl {
@@ -272,7 +268,7 @@ void Renderer::render(const draw::Snapshot& s, const Camera& camera, const Rende
   r.targets.ensure_shadow_map();
   auto t0 = Clock::now();
   r.buffers.upload(s, kKeyDirection);
-  r.times.upload = seconds_since(t0);
+  r.times.upload = std::chrono::duration<double>(Clock::now() - t0).count();
   t0 = Clock::now();
 
   const float aspect = static_cast<float>(o.width) / static_cast<float>(o.height);
@@ -323,7 +319,7 @@ void Renderer::render(const draw::Snapshot& s, const Camera& camera, const Rende
   gl.BindVertexArray(0);
   r.targets.resolve();
   gl.Finish();
-  r.times.draw = seconds_since(t0);
+  r.times.draw = std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
 void Renderer::render_bare(const draw::Snapshot& s, const Camera& camera, const RenderOptions& o) {
@@ -354,7 +350,7 @@ void Renderer::render_bare(const draw::Snapshot& s, const Camera& camera, const 
   gl.BindVertexArray(0);
   r.targets.resolve();
   gl.Finish();
-  r.times.draw = seconds_since(t0);
+  r.times.draw = std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
 void Renderer::present(GLuint framebuffer) const {

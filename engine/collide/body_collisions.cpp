@@ -1,24 +1,20 @@
 #include "collide/body_collisions.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "collide/body_push.h"
 #include "collide/contact_impulse.h"
 #include "collide/rigid_contact.h"
 #include "collide/triangle_geometry.h"
+#include "core/wall_clock.h"
 #include "deform/body_dynamics.h"
 
 namespace pbm {
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using Clock = WallClock;
 using Scratch = BodyCollisionWorkspace::BodyScratch;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 bool sized_for(std::span<const BodyModel> bodies, const BodyCollisionWorkspace& cws) {
   if (cws.bodies.size() != bodies.size() || cws.broadphase.boxes.size() != bodies.size()) {

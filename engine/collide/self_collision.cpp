@@ -1,23 +1,19 @@
 #include "collide/self_collision.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "collide/contact_impulse.h"
 #include "collide/continuous_collision.h"
 #include "collide/triangle_geometry.h"
+#include "core/wall_clock.h"
 
 namespace pbm {
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using Clock = WallClock;
 using Pair = SelfCollisionWorkspace::Pair;
 using Topology = SelfCollisionWorkspace::BodyTopology;
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 // Passes of stage 3 before the impact zones take over (Bridson uses a few).
 constexpr int kContinuousPasses = 8;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/bits.h"
 #include "core/quaternion.h"
 #include "deform/reference_shape.h"
 #include "deform/superquadric.h"
@@ -128,13 +129,6 @@ void resize_workspace(const BodyModel& body, BodyWorkspace& ws) {
   ws.shape_has_J = false;
   ws.mass_key.resize(0);
 }
-
-namespace {
-bool same_bits(const VecX& a, const VecX& b) {
-  return a.size() == b.size() &&
-         std::memcmp(a.data(), b.data(), sizeof(Real) * static_cast<std::size_t>(a.size())) == 0;
-}
-}  // namespace
 
 void compute_node_bases(const BodyModel& body, const VecX& q_s, BodyWorkspace& ws) {
   for (std::size_t k = 0; k < body.grid_u.size(); ++k) {

@@ -1,16 +1,16 @@
 #include "sim/world.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstring>
 
 #include "core/bits.h"
+#include "core/wall_clock.h"
 
 namespace pbm {
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using Clock = WallClock;
 
 // The rates of every present subsystem at (t, q, v): the drive at t, then each rate hook in the
 // order of its stage (forces, contact forces, controllers, dynamics, constraints, kinematics).
@@ -269,7 +269,7 @@ FrameResult advance_frame(const World& world, const Inputs& inputs, State& state
       ws.clock.switch_to(StepStage::count, SubsystemId::count);
       stats.stage_seconds = ws.clock.stage_seconds;
       stats.subsystem_seconds = ws.clock.subsystem_seconds;
-      stats.wall_seconds = std::chrono::duration<double>(Clock::now() - wall0).count();
+      stats.wall_seconds = seconds_since(wall0);
       return result;
     }
     state = ws.frame_start;
@@ -280,7 +280,7 @@ FrameResult advance_frame(const World& world, const Inputs& inputs, State& state
   result.message += " (after " + std::to_string(model.solver.max_retries) +
                     " retries with halved substeps, at t = " + std::to_string(state.time) + " s)";
   stats = before;
-  stats.wall_seconds = std::chrono::duration<double>(Clock::now() - wall0).count();
+  stats.wall_seconds = seconds_since(wall0);
   return result;
 }
 
