@@ -1,7 +1,7 @@
-// The engine thread and its timeline (DESIGN §4, §5): scrubbing restores states bit for bit,
-// edits drop exactly the frames they invalidate, mouse drags are recorded into the scene and
-// replay from the saved file, and the threaded Runner ends where a serial replay of its journal
-// ends.
+// The engine thread and its timeline (docs/architecture.md, "Runner" and "Timeline"): scrubbing
+// restores states bit for bit, edits drop exactly the frames they invalidate, mouse drags are
+// recorded into the scene and replay from the saved file, and the threaded Runner ends where a
+// serial replay of its journal ends.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -169,7 +169,7 @@ TEST(RunnerCore, EditAtFrame20DropsOnlyTheFramesAfterIt) {
 
 // The model is rebuilt and the workspace made afresh at frame 25, with the ball in contact: the
 // frames computed again after it are the same bits, so a step depends on (Model, State) alone
-// (DESIGN §1), never on what the workspace saw before.
+// (docs/architecture.md, "Determinism"), never on what the workspace saw before.
 TEST(RunnerCore, EditThatChangesNothingRecomputesTheSameFrames) {
   RunnerCore core(jello_ball());
   core.apply(Seek{40});
@@ -230,35 +230,73 @@ TEST(RunnerCore, RefusedEditNamesTheFieldAndChangesNothing) {
 
 // ---- mouse spring -----------------------------------------------------------------------------
 
-TEST(MouseSpring, ParametersFromTheBodyMassAndTheStep) {
-  RunnerCore jello(jello_ball());
-  const MouseSpringParameters p = mouse_spring_parameters(jello.model(), 0);
-  // 258 nodes of 8 kg at dt = 0.031 s: the one-node stability cap binds, not the 1.5 Hz pull.
-  const Real m = 258 * 8.0, dt = 0.031;
-  EXPECT_NEAR(p.stiffness, 0.25 * 8 / (dt * dt), 1e-9);
-  EXPECT_LT(p.stiffness, m * std::pow(2 * std::numbers::pi * 1.5, 2));
-  EXPECT_NEAR(p.damping, 0.5 * 8 / dt, 1e-9);
-  EXPECT_NEAR(p.max_force, 3 * m * 9.81, 1e-6);
+// What the mouse spring is sized to do (mouse_spring_parameters), measured on the pull itself:
+// (a) a light ball in free space follows the target: its grabbed node closes on a target 1 m
+//     away like a damped 1.5 Hz spring (to a fifth of the distance by 0.5 s, the 0.2 s ramp
+//     included) and is held there;
+// (b) the same ball, rigid, moving as through honey (nu = 100 / s), pulled toward a target 20 m
+//     away, moves at the speed the force limit allows, 3 m/s (a local one as soft as this lets
+//     the node run ahead out of its membrane instead: the limit bounds the force, not the
+//     stretch);
+// (c) the jello-ball (2064 kg at the book's coarse step, 0.031 s) dragged hard computes every
+//     frame without a retry of the stability guard: the stiffness is capped for the explicit
+//     substep on the one node it acts on.
+Real grabbed_distance(RunnerCore& core, int node, const Vec3& target) {
+  return (node_position(core, node) - target).norm();
+}
 
-  // A light ball in free space at a small step: the 1.5 Hz pull binds, gravity 0 -> 9.81.
+TEST(MouseSpring, FollowsTheTargetAndStaysStable) {
   Scene scene = test::free_space(test::ball(DeformLevel::local, 6));
   scene.solver.dt = 0.0005;
-  RunnerCore ball(scene);
-  const MouseSpringParameters q = mouse_spring_parameters(ball.model(), 0);
-  const Real omega = 2 * std::numbers::pi * 1.5;
-  EXPECT_NEAR(q.stiffness, 10 * omega * omega, 1e-9);
-  EXPECT_NEAR(q.damping, 2 * 0.7 * std::sqrt(q.stiffness * 10), 1e-9);
-  EXPECT_NEAR(q.max_force, 3 * 10 * 9.81, 1e-9);
-
-  // The same ball moving as through honey, nu = 100 / s: the pull follows within 1 / omega
-  // through the damping (k = m nu omega), and the limit moves it at 3 m/s (nu m 3 m/s).
-  scene.bodies[0].material.damping = 100;
-  RunnerCore honey(scene);
-  const MouseSpringParameters r = mouse_spring_parameters(honey.model(), 0);
-  const Real m_node = honey.model().bodies[0].node_mass.minCoeff();
-  EXPECT_NEAR(r.stiffness, 10 * 100 * omega, 1e-9);
-  EXPECT_NEAR(r.damping, 0.5 * m_node / 0.0005, 1e-9);  // the one-node cap binds
-  EXPECT_NEAR(r.max_force, 10 * 100 * 3.0, 1e-9);
+  {
+    RunnerCore ball(scene);
+    const Vec3 target = node_position(ball, 0) + Vec3(1, 0, 0);
+    ASSERT_EQ(ball.apply(SpringBegin{0, 0, target}), "");
+    Real closest = 1e300, at_half_second = 0;
+    for (int f = 1; f <= 45; ++f) {  // 1.5 s
+      ASSERT_EQ(ball.apply(StepFrame{}), "");
+      const Real d = grabbed_distance(ball, 0, target);
+      if (f == 15) at_half_second = d;
+      closest = std::min(closest, d);
+    }
+    const Real end = grabbed_distance(ball, 0, target);
+    std::printf(
+        "mouse spring, free ball: node 1 m from the target -> %.3f m at 0.5 s, %.4f m at "
+        "1.5 s (closest %.4f m)\n",
+        at_half_second, end, closest);
+    EXPECT_LT(at_half_second, 0.2);
+    EXPECT_LT(end, 0.05);
+    EXPECT_LT(closest, 0.2);
+  }
+  {
+    scene.bodies[0].material.damping = 100;
+    scene.bodies[0].level = DeformLevel::rigid;
+    RunnerCore honey(scene);
+    const Vec3 target = node_position(honey, 0) + Vec3(20, 0, 0);
+    ASSERT_EQ(honey.apply(SpringBegin{0, 0, target}), "");
+    for (int f = 0; f < 15; ++f) ASSERT_EQ(honey.apply(StepFrame{}), "");  // 0.5 s
+    const Real x0 = centre_x(honey), t0 = honey.state().time;
+    for (int f = 0; f < 15; ++f) ASSERT_EQ(honey.apply(StepFrame{}), "");
+    const Real speed = (centre_x(honey) - x0) / (honey.state().time - t0);
+    std::printf("mouse spring, ball in honey pulled toward 20 m: %.3f m/s\n", speed);
+    EXPECT_NEAR(speed, 3.0, 0.05);
+  }
+  {
+    RunnerCore jello(jello_ball());
+    jello.apply(Seek{10});
+    const int node = rightmost_node(jello);
+    int retries = 0;
+    ASSERT_EQ(jello.apply(SpringBegin{0, node, node_position(jello, node) + Vec3(3, 0, 2)}), "");
+    for (int f = 0; f < 30; ++f) {
+      ASSERT_EQ(jello.apply(StepFrame{}), "");
+      ASSERT_EQ(jello.message(), "");
+      retries += jello.last_stats().retries;
+    }
+    const Real moved = centre_x(jello) - 2.5;
+    std::printf("mouse spring, jello-ball dragged 3 m: %d retries in 30 frames, centre x %+.3f m\n",
+                retries, moved);
+    EXPECT_EQ(retries, 0);
+  }
 }
 
 TEST(MouseSpring, RecordedIntoTheSceneAsASpringWithTracks) {
