@@ -1,4 +1,5 @@
-// pbm: the command line (validate, simulate, render, bench). A thin main over engine/ (DESIGN §2).
+// pbm: the command line (validate, simulate, render, bench). A thin main over engine/
+// (docs/architecture.md, "Folders").
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 

@@ -1,5 +1,5 @@
-// A one-line progress bar on stderr for long CLI runs (DESIGN §7); silent when stderr is not a
-// terminal, so logs and CI output stay clean.
+// A one-line progress bar on stderr for long CLI runs; silent when stderr is not a terminal, so
+// logs and CI output stay clean.
 #pragma once
 
 #include <chrono>

@@ -19,7 +19,8 @@ struct SimulateOptions {
   std::string mesh_format = "obj";
 };
 
-// Exit codes: 0 ok, 1 simulation failed, 2 bad input (DESIGN §7).
+// Exit codes: 0 ok, 1 simulation failed, 2 bad input (docs/architecture.md, "Errors and exit
+// codes").
 int run_validate(const std::string& scene_path);
 int run_simulate(const SimulateOptions& options);
 

@@ -1,5 +1,6 @@
-// Timeline cache (DESIGN §5): exact restore, the memory budget (oldest stored evicted first,
-// frame 0 and the newest never), the ranges the studio draws, and dropping after an edit.
+// Timeline cache (docs/architecture.md, "Timeline"): exact restore, the memory budget (oldest
+// stored evicted first, frame 0 and the newest never), the ranges the studio draws, and dropping
+// after an edit.
 #include <gtest/gtest.h>
 
 #include "sim/timeline.h"

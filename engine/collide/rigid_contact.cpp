@@ -405,7 +405,8 @@ ContactResolution resolve_penetrations(Obstacles obstacles, const BodyModel& bod
       // from q as compute_body_kinematics does (s is unchanged), not updated in place: the
       // factorization below is keyed on q and reused by the next step, so it must be the one a
       // fresh workspace computes at this q, or results would depend on the workspace's history
-      // (DESIGN §1; a timeline re-simulation or a rebuilt workspace would differ in the last bits).
+      // (docs/architecture.md, "Determinism": a timeline re-simulation or a rebuilt workspace
+      // would differ in the last bits).
       recenter_displacements(body, q, v);
       for (int i = 0; i < body.n_nodes(); ++i) ws.p[i] = ws.s[i] + q.segment<3>(d_q + 3 * i);
     }

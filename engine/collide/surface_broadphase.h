@@ -1,13 +1,13 @@
 // Broadphase of the deformable-deformable collisions (sec. 5.2.2): one Bullet dynamic AABB tree
 // (btDbvt) per body over its surface triangles, refitted every step.
 //
-// A triangle's leaf stores its box fattened by 2 margin (rounded outward to Bullet's float) and
-// is reinserted only when the box fattened by 1 margin leaves it, so most steps move no leaf.
-// The leaves' volumes therefore depend on the tree's history; to keep results a function of the
-// state alone (DESIGN §1, a rebuilt workspace must give the same bits), every pair the tree
-// reports is re-checked against the current boxes fattened by 1 margin, in double, and the pairs
-// are sorted. The reported set is thus exactly "current fattened boxes overlap", whatever the
-// tree's shape or traversal order.
+// A triangle's leaf stores its box fattened by 2 margin (rounded outward to Bullet's float) and is
+// reinserted only when the box fattened by 1 margin leaves it, so most steps move no leaf. The
+// leaves' volumes therefore depend on the tree's history; to keep results a function of the state
+// alone (docs/architecture.md, "Determinism": a rebuilt workspace must give the same bits), every
+// pair the tree reports is re-checked against the current boxes fattened by 1 margin, in double,
+// and the pairs are sorted. The reported set is thus exactly "current fattened boxes overlap",
+// whatever the tree's shape or traversal order.
 //
 // Copying the structure gives an empty one (its trees are rebuilt on the next update): it is
 // scratch, never State.

@@ -1,5 +1,7 @@
 // pbm::Error: bad input at a boundary, carrying the file and the JSON path of the field
-// (DESIGN §7). Numerical failures mid-step are not exceptions: see sim/stability_guard.h.
+// (docs/architecture.md, "Errors and exit codes"). Numerical failures mid-step are not
+// exceptions: the stability guard of advance_frame (sim/world.h) handles them
+// (docs/architecture.md, "Stability guard").
 #pragma once
 
 #include <stdexcept>

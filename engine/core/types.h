@@ -1,4 +1,5 @@
-// Eigen aliases and small fixed-size types used across the engine (STYLE §15).
+// Eigen aliases and small fixed-size types used across the engine (docs/architecture.md,
+// "Style").
 #pragma once
 
 #include <Eigen/Core>

@@ -18,7 +18,8 @@ namespace {
 using Json = nlohmann::ordered_json;  // keeps the scene's keys in their documented order
 using Clock = std::chrono::steady_clock;
 
-// "/bodies/0/material/w1" -> "bodies[0].material.w1": the path form pbm::Error uses (DESIGN §7).
+// "/bodies/0/material/w1" -> "bodies[0].material.w1": the path form pbm::Error uses
+// (docs/architecture.md, "Errors and exit codes").
 std::string path_of_pointer(const std::string& pointer) {
   std::string path;
   std::size_t begin = 1;
@@ -158,7 +159,7 @@ std::string RunnerCore::handle(const ResetToStart&) {
 
 std::string RunnerCore::handle(const EditScene& edit) {
   // Through the file format, so that an edit is validated exactly like a loaded file and names
-  // the field it broke in the same words (DESIGN §7).
+  // the field it broke in the same words (docs/architecture.md, "Errors and exit codes").
   if (active_spring_ >= 0) return "finish dragging the mouse spring before editing the scene";
   Scene edited;
   try {
@@ -323,7 +324,8 @@ std::string RunnerCore::rebuild(Scene edited) {
 bool RunnerCore::advance() {
   FrameResult result = advance_frame(*sim_);
   if (!result.ok) {
-    // DESIGN §6: the guard gave up; the state is still that of frame_, never a NaN frame.
+    // The stability guard gave up (docs/architecture.md, "Stability guard"): the state is still
+    // that of frame_, never a NaN frame.
     message_ = "frame " + std::to_string(frame_ + 1) + ": " + result.message;
     playing_ = false;
     return false;

@@ -1,4 +1,4 @@
-// The engine thread and its timeline (DESIGN §4, §5).
+// The engine thread and its timeline (docs/architecture.md, "Runner" and "Timeline").
 //
 // RunnerCore is the whole behaviour, single-threaded and deterministic: it owns the Scene (the
 // editable source, saved by the studio), the Model compiled from it, the State, the Workspace and

@@ -1,4 +1,5 @@
-// State: minimal restartable plain data (DESIGN §1). Layout described in sim/model.h.
+// State: minimal restartable plain data (docs/architecture.md, "Determinism"). Layout described
+// in sim/model.h.
 #pragma once
 
 #include <cstdint>

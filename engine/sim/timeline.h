@@ -1,8 +1,8 @@
-// Timeline cache (DESIGN §5): the State and stats of every frame computed, so that scrubbing to a
-// cached frame restores it exactly and scrubbing elsewhere re-simulates only from the nearest
-// cached frame before it. Bounded by a memory budget: when over it, the frames stored longest
-// ago go first, except frame 0 (every re-simulation can start there) and the frame just stored
-// (the runner's current frame).
+// Timeline cache (docs/architecture.md, "Timeline"): the State and stats of every frame computed,
+// so that scrubbing to a cached frame restores it exactly and scrubbing elsewhere re-simulates only
+// from the nearest cached frame before it. Bounded by a memory budget: when over it, the frames
+// stored longest ago go first, except frame 0 (every re-simulation can start there) and the frame
+// just stored (the runner's current frame).
 #pragma once
 
 #include <cstddef>
