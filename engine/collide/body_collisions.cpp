@@ -279,6 +279,7 @@ void pair_nodes(std::span<const BodyModel> bodies, BodyCollisionWorkspace& cws,
       }
     }
     first = last;
+    if (best_t < 0) continue;  // no finite distance: a non-finite position, left to the guard
     const std::array<int, 3>& t = triangles[best_t];
     const Vec3& w = best_point.weights;
     Vec3 n = w[0] * sb.normal[t[0]] + w[1] * sb.normal[t[1]] + w[2] * sb.normal[t[2]];

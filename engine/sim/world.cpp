@@ -156,6 +156,10 @@ bool advance_substep(const World& world, const Inputs& inputs, State& state, Rea
   }
   evaluations += istats.evaluations;
   state.time += dt;
+  // A state the integrator left NaN or infinite goes no further: the corrections after the step
+  // (collision searches over the bodies' positions) assume finite input, and the guard retries
+  // the frame from its start anyway.
+  if (!all_finite(state)) return false;
   // After the step: unit quaternions, then collisions between bodies (5.2.2), with obstacles
   // (5.2.1: no node is left inside an obstacle by another body), within a body.
   for (; hook != world.substeps.end(); ++hook) {
