@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "bench_constraints.h"
+#include "bench_drag.h"
 #include "bench_render.h"
 #include "bullet_soft_ellipsoid.h"
 #include "core/error.h"
@@ -80,8 +81,9 @@ double time_bullet(const Scene& scene, int nodes, int steps, int& bullet_nodes) 
 int run_bench(const BenchOptions& o) {
   if (o.what == "render") return run_bench_render(o.scene, std::max(5, o.steps / 2));
   if (o.what == "constraints") return run_bench_constraints(o.max_constraints);
+  if (o.what == "drag") return run_bench_drag(o.scene, std::max(1, o.steps));
   if (o.what != "deform") {
-    spdlog::error("unknown benchmark '{}' (known: deform, render, constraints)", o.what);
+    spdlog::error("unknown benchmark '{}' (known: deform, render, constraints, drag)", o.what);
     return 2;
   }
   Scene scene;

@@ -44,9 +44,11 @@ int main(int argc, char** argv) {
   auto* bench_cmd = app.add_subcommand(
       "bench",
       "benchmarks: deform (ours vs Bullet btSoftBody), render (ours vs a bare draw), "
-      "constraints (dense vs sparse constraint solve)");
-  bench_cmd->add_option("what", bench.what, "deform | render | constraints")->required();
-  bench_cmd->add_option("--steps", bench.steps, "steps timed per size");
+      "constraints (dense vs sparse constraint solve), drag (a mouse-drag move vs recompiling)");
+  bench_cmd->add_option("what", bench.what, "deform | render | constraints | drag")->required();
+  bench_cmd->add_option("--steps", bench.steps, "steps timed per size (drag: frames of moves)");
+  bench_cmd->add_option("--scene", bench.scene,
+                        "scene of deform, render and drag (default scenes/jello-ball.json)");
   bench_cmd->add_option("--max-nodes", bench.max_nodes, "largest node count to run");
   bench_cmd->add_option("--max-constraints", bench.max_constraints,
                         "constraints: largest number of constraints to run");
