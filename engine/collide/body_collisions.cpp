@@ -79,8 +79,8 @@ void compute_vertex_normals(const BodyModel& body, Scratch& s) {
 // World velocity of node k of a rigid or global body from the scratch nu: R P_k nu (3.4).
 Vec3 generalized_node_velocity(const BodyModel& body, const BodyWorkspace& bw, const Scratch& s,
                                int k) {
-  Vec3 r = s.nu.segment<3>(0) + s.nu.segment<3>(3).cross(bw.p[k]);
-  if (body.n_s > 0) r += J_times(bw, k, s.nu.data() + 6);
+  Vec3 r = linear_part(s.nu) + angular_part(s.nu).cross(bw.p[k]);
+  if (body.n_s > 0) r += J_times(bw, k, s.nu.data() + BodyLayout::kShapeInV);
   return bw.R * r;
 }
 
@@ -137,9 +137,9 @@ void generalized_impulse(const BodyModel& body, const BodyWorkspace& bw, const S
   for (int k = 0; k < side.count; ++k) {
     const int i = side.nodes[k];
     const Real w = side.weights[k];
-    s.g.segment<3>(0) += w * y;
-    s.g.segment<3>(3) += w * bw.p[i].cross(y);
-    if (body.n_s > 0) add_Jt_y(bw, i, y, w, s.g.data() + 6);
+    linear_part(s.g) += w * y;
+    angular_part(s.g) += w * bw.p[i].cross(y);
+    if (body.n_s > 0) add_Jt_y(bw, i, y, w, s.g.data() + BodyLayout::kShapeInV);
   }
 }
 
@@ -377,8 +377,8 @@ void write_back_body(const BodySet& set, int b, BodyCollisionWorkspace& cws) {
   auto v = body_v(body, set.v);
   const Mat3 Rt = bw.R.transpose();
   if (body.has_local) {
-    const int d_q = 7 + body.n_s, d_v = 6 + body.n_s;
-    const Vec3 omega = v.segment<3>(3);
+    const int d_q = body.layout.displacement_in_q(), d_v = body.layout.displacement_in_v();
+    const Vec3 omega = omega_of(v);
     for (int i = 0; i < body.n_nodes(); ++i) {
       // x-dot = R (V + omega x p + p-dot) (3.4): a node moved by dp would gain omega x dp, so
       // its d-dot loses it and the velocity is the one the impulses left.
@@ -391,9 +391,9 @@ void write_back_body(const BodySet& set, int b, BodyCollisionWorkspace& cws) {
     factor_generalized_mass(body, q, bw);
     resplit_velocities(body, q, v, bw);
   } else {
-    q.segment<3>(0) += s.shift;
-    v.segment<3>(0) = bw.R * s.nu.segment<3>(0);
-    v.segment(3, body.n_generalized() - 3) = s.nu.tail(body.n_generalized() - 3);
+    position_of(q) += s.shift;
+    velocity_of(v) = bw.R * linear_part(s.nu);
+    after_translation(v, body.n_generalized()) = after_translation(s.nu, body.n_generalized());
   }
   compute_body_kinematics(body, q, v, bw, false);
 }
@@ -426,8 +426,8 @@ void resolve_between_bodies(const BodyCollisionModel& model, const BodySet& set,
     s.touched = false;
     s.mass_factored = false;
     if (!body.has_local) {
-      s.nu.segment<3>(0) = bw.R.transpose() * v.segment<3>(0);
-      s.nu.tail(body.n_generalized() - 3) = v.segment(3, body.n_generalized() - 3);
+      linear_part(s.nu) = bw.R.transpose() * velocity_of(v);
+      after_translation(s.nu, body.n_generalized()) = after_translation(v, body.n_generalized());
     }
     compute_vertex_normals(body, s);
     update_surface_tree(b, s.x, body.tessellation.triangles, options.margin, cws.broadphase);

@@ -26,9 +26,9 @@ struct GlobalPoint {
 GlobalPoint global_point(const BodyModel& body, const BodyWorkspace& bw,
                          const Eigen::Ref<const VecX>& q, const Eigen::Ref<const VecX>& v, int k) {
   if (!body.has_local) return {bw.x[k], bw.x_dot[k]};
-  Vec3 r = v.segment<3>(3).cross(bw.s[k]);
-  if (body.n_s > 0) r += J_times(bw, k, v.data() + 6);
-  return {q.segment<3>(0) + bw.R * bw.s[k], v.segment<3>(0) + bw.R * r};
+  Vec3 r = omega_of(v).cross(bw.s[k]);
+  if (body.n_s > 0) r += J_times(bw, k, v.data() + BodyLayout::kShapeInV);
+  return {position_of(q) + bw.R * bw.s[k], velocity_of(v) + bw.R * r};
 }
 
 // g = sum w_k P_k^T R^T y at the global points (s_k, not s_k + d_k: the push acts on the global
@@ -40,9 +40,9 @@ void push_direction(const BodyModel& body, const BodyWorkspace& bw, const int* n
   for (int k = 0; k < count; ++k) {
     const int i = nodes[k];
     const Vec3& s = body.has_local ? bw.s[i] : bw.p[i];
-    g.segment<3>(0) += weights[k] * y;
-    g.segment<3>(3) += weights[k] * s.cross(y);
-    if (body.n_s > 0) add_Jt_y(bw, i, y, weights[k], g.data() + 6);
+    linear_part(g) += weights[k] * y;
+    angular_part(g) += weights[k] * s.cross(y);
+    if (body.n_s > 0) add_Jt_y(bw, i, y, weights[k], g.data() + BodyLayout::kShapeInV);
   }
 }
 
@@ -160,8 +160,8 @@ BodyPushStats apply_body_push(const BodySet& set, BodyCollisionWorkspace& cws, R
     push_direction(body, bw, nodes, weights, count, J, g);
     solve_generalized_mass(bw, g, a_inv_g);
     auto v = slice_v(b);
-    v.segment<3>(0) += bw.R * a_inv_g.segment<3>(0);
-    v.segment(3, body.n_generalized() - 3) += a_inv_g.tail(body.n_generalized() - 3);
+    velocity_of(v) += bw.R * linear_part(a_inv_g);
+    after_translation(v, body.n_generalized()) += after_translation(a_inv_g, body.n_generalized());
     changed[b] = 1;
   };
   for (std::size_t p = 0; p < pairs.size(); ++p) {

@@ -18,13 +18,13 @@ constexpr Real kContactDamping = 0.5;
 // Positions only (no Jacobian): the cheap pass that detects penetration.
 void compute_node_positions(const BodyModel& body, const Eigen::Ref<const VecX>& q,
                             BodyWorkspace& ws) {
-  const Vec3 c = q.segment<3>(0);
-  ws.R = rotation_from_quaternion(q.segment<4>(3));
-  ws.q_s = body.n_s > 0 ? VecX(q.segment(7, body.n_s)) : body.q_s_fixed;
+  const Vec3 c = position_of(q);
+  ws.R = rotation_from_quaternion(quaternion_of(q));
+  ws.q_s = body.n_s > 0 ? VecX(shape_of(body.layout, q)) : body.q_s_fixed;
   compute_reference_positions(body, ws.q_s, ws);
   for (int i = 0; i < body.n_nodes(); ++i) {
     Vec3 p = ws.s[i];
-    if (body.has_local) p += q.segment<3>(7 + body.n_s + 3 * i);
+    if (body.has_local) p += q.segment<3>(body.layout.displacement_in_q() + 3 * i);
     ws.p[i] = p;
     ws.x[i] = c + ws.R * p;
   }
@@ -62,8 +62,8 @@ void resolve_generalized_impulses(Obstacles obstacles, const BodyModel& body,
   if (n_c == 0) return;
   const Mat3 Rt = ws.R.transpose();
   VecX nu(k);  // nu_g in the body frame
-  nu.segment<3>(0) = Rt * v.segment<3>(0);
-  nu.segment(3, k - 3) = v.segment(3, k - 3);
+  linear_part(nu) = Rt * velocity_of(v);
+  after_translation(nu, k) = after_translation(v, k);
   // Per contact, in the body frame: the basis (n, t1, t2), Minv P^T of each direction and the
   // 3x3 Delassus block W = B^T P Minv P^T B, so the iterations only do vector updates.
   struct ContactPoint {
@@ -132,8 +132,8 @@ void resolve_generalized_impulses(Obstacles obstacles, const BodyModel& body,
     nu += delta;
     if (change <= 1e-9 * largest) break;
   }
-  v.segment<3>(0) = ws.R * nu.segment<3>(0);
-  v.segment(3, k - 3) = nu.segment(3, k - 3);
+  velocity_of(v) = ws.R * linear_part(nu);
+  after_translation(v, k) = after_translation(nu, k);
 }
 
 }  // namespace
@@ -228,11 +228,12 @@ void gather_pressing_samples(Obstacles obstacles, const BodyModel& body, BodyWor
 // P^T y for a body-frame force y at a sample: (y, s x y, J_s^T y), J_s blended like s.
 void sample_generalized(const BodyModel& body, const BodyWorkspace& ws, const ContactSample& sample,
                         const Vec3& s, const Vec3& y, Eigen::Ref<VecX> out) {
-  out.segment<3>(0) = y;
-  out.segment<3>(3) = s.cross(y);
+  linear_part(out) = y;
+  angular_part(out) = s.cross(y);
   if (body.n_s == 0) return;
   out.tail(body.n_s).setZero();
-  for (int m = 0; m < 3; ++m) add_Jt_y(ws, sample.nodes[m], y, sample.weights[m], out.data() + 6);
+  for (int m = 0; m < 3; ++m)
+    add_Jt_y(ws, sample.nodes[m], y, sample.weights[m], out.data() + BodyLayout::kShapeInV);
 }
 
 // Room for m columns in a scratch matrix of k rows, grown by doubling (no allocation in a steady
@@ -371,7 +372,7 @@ ContactResolution resolve_penetrations(Obstacles obstacles, const BodyModel& bod
   if (body.has_local) {
     if (!nodes.empty()) {
       const Mat3 Rt = ws.R.transpose();
-      const int d_q = 7 + body.n_s, d_v = 6 + body.n_s;
+      const int d_q = body.layout.displacement_in_q(), d_v = body.layout.displacement_in_v();
       for (int i : nodes) {
         // Repeat for a node inside two obstacles (a corner): each pass leaves one of them.
         for (int pass = 0; pass < 4; ++pass) {
@@ -432,7 +433,7 @@ ContactResolution resolve_penetrations(Obstacles obstacles, const BodyModel& bod
         }
       }
       if (worst >= 0) break;
-      q.segment<3>(0) += push;
+      position_of(q) += push;
       for (Vec3& x : ws.x) x += push;
     }
   }

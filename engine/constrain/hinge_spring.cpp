@@ -26,7 +26,7 @@ void add_torque(const ConstrainedSystem& system, int body, const Vec3& tau_world
   BodyWorkspace& bw = bodies[body];
   VecX& g = force[body];
   g.setZero();
-  g.segment<3>(3) = bw.R.transpose() * tau_world;
+  angular_part(g) = bw.R.transpose() * tau_world;
   VecX& x = delta[body];
   solve_generalized_mass(bw, g, x);
   if (b.order == DynamicsOrder::first) x /= b.damping;  // (3.51): nu A q-dot = f

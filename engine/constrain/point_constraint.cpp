@@ -24,9 +24,9 @@ Vec3 constraint_end_velocity(const ConstraintPoint& end, const std::vector<BodyW
   if (end.body < 0) return Vec3::Zero();
   const BodyWorkspace& bw = bodies[end.body];
   if (end.node >= 0) return bw.x_dot[end.node];
-  const int offset = system.bodies[end.body].v_offset;
-  const Vec3 omega = v.segment<3>(offset + 3);
-  return v.segment<3>(offset) + bw.R * omega.cross(end.point);
+  const BodyModel& body = system.bodies[end.body];
+  const auto v_body = v.segment(body.v_offset, body.v_size);
+  return velocity_of(v_body) + bw.R * omega_of(v_body).cross(end.point);
 }
 
 Vec3 constraint_end_rate(const ConstraintPoint& end, const std::vector<BodyWorkspace>& bodies,
@@ -36,16 +36,16 @@ Vec3 constraint_end_rate(const ConstraintPoint& end, const std::vector<BodyWorks
   const BodyWorkspace& bw = bodies[end.body];
   const auto r = rates.segment(body.v_offset, body.v_size);
   const Vec3 p = body_point(end, bw);
-  const Vec3 turn = r.segment<3>(3);  // omega-dot, or omega for first-order bodies
+  const Vec3 turn = omega_of(r);  // omega-dot, or omega for first-order bodies
   Vec3 local = turn.cross(p);
   if (end.node >= 0) {
-    if (body.n_s > 0) local += J_times(bw, end.node, r.data() + 6);
-    if (body.has_local) local += r.segment<3>(6 + body.n_s + 3 * end.node);
+    if (body.n_s > 0) local += J_times(bw, end.node, r.data() + BodyLayout::kShapeInV);
+    if (body.has_local) local += r.segment<3>(body.layout.displacement_in_v() + 3 * end.node);
     if (body.order == DynamicsOrder::second) local += bw.a_vp[end.node];
   } else if (body.order == DynamicsOrder::second) {
     local += bw.omega.cross(bw.omega.cross(p));  // (3.18) for a point fixed in the frame
   }
-  return r.segment<3>(0) + bw.R * local;
+  return velocity_of(r) + bw.R * local;
 }
 
 void constraint_end_jacobian_transpose(const ConstraintPoint& end, const BodyModel& body,
@@ -55,18 +55,20 @@ void constraint_end_jacobian_transpose(const ConstraintPoint& end, const BodyMod
   G.setZero();
   for (int j = 0; j < 3; ++j) {
     const Vec3 y = bw.R.row(j).transpose();
-    G.block<3, 1>(0, j) = y;
-    G.block<3, 1>(3, j) = p.cross(y);
-    if (end.node >= 0 && body.n_s > 0) add_Jt_y(bw, end.node, y, 1.0, G.col(j).data() + 6);
+    linear_part(G.col(j)) = y;
+    angular_part(G.col(j)) = p.cross(y);
+    if (end.node >= 0 && body.n_s > 0) {
+      add_Jt_y(bw, end.node, y, 1.0, G.col(j).data() + BodyLayout::kShapeInV);
+    }
   }
 }
 
 void add_generalized_rate(const BodyModel& body, const BodyWorkspace& bw, const VecX& delta,
                           VecX& rates) {
-  auto r = rates.segment(body.v_offset, 6 + body.n_s);
-  r.segment<3>(0) += bw.R * delta.segment<3>(0);
-  r.segment<3>(3) += delta.segment<3>(3);
-  if (body.n_s > 0) r.segment(6, body.n_s) += delta.segment(6, body.n_s);
+  auto r = rates.segment(body.v_offset, body.n_generalized());
+  velocity_of(r) += bw.R * linear_part(delta);
+  omega_of(r) += angular_part(delta);
+  if (body.n_s > 0) shape_rate_of(body.layout, r) += shape_rate_of(body.layout, delta);
 }
 
 }  // namespace pbm

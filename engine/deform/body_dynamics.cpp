@@ -11,27 +11,28 @@
 namespace pbm {
 namespace {
 
-// Slices of a body's q and v (layout in sim/model.h).
+// Offsets of a body's q_s and q_d in its q, and of their rates in its v (deform/body_layout.h).
 struct BodySlices {
   int s_q, d_q;  // offsets of q_s and q_d in q
   int s_v, d_v;  // offsets of q_s-dot and d-dot in v
 };
 BodySlices slices(const BodyModel& body) {
-  return {7, 7 + body.n_s, 6, 6 + body.n_s};
+  return {BodyLayout::kShapeInQ, body.layout.displacement_in_q(), BodyLayout::kShapeInV,
+          body.layout.displacement_in_v()};
 }
 
 // P_i^T y for P_i = [I, -p~_i, J_i]: (y, p_i x y, J_i^T y).
 template <class Out>
 void add_Pt(const BodyModel& body, const BodyWorkspace& ws, int i, const Vec3& y, Out& out) {
-  out.template segment<3>(0) += y;
-  out.template segment<3>(3) += ws.p[i].cross(y);
-  if (body.n_s > 0) add_Jt_y(ws, i, y, 1.0, out.data() + 6);
+  linear_part(out) += y;
+  angular_part(out) += ws.p[i].cross(y);
+  if (body.n_s > 0) add_Jt_y(ws, i, y, 1.0, out.data() + BodyLayout::kShapeInV);
 }
 
 // P_i g for a k-vector g: g_c + g_omega x p_i + J_i g_s.
 Vec3 apply_P(const BodyModel& body, const BodyWorkspace& ws, int i, const VecX& g) {
-  Vec3 r = g.segment<3>(0) + g.segment<3>(3).cross(ws.p[i]);
-  if (body.n_s > 0) r += J_times(ws, i, g.data() + 6);
+  Vec3 r = linear_part(g) + angular_part(g).cross(ws.p[i]);
+  if (body.n_s > 0) r += J_times(ws, i, g.data() + BodyLayout::kShapeInV);
   return r;
 }
 
@@ -168,10 +169,10 @@ void compute_body_kinematics(const BodyModel& body, const Eigen::Ref<const VecX>
                              bool with_accelerations) {
   const int n = body.n_nodes();
   const BodySlices sl = slices(body);
-  const Vec3 c = q.segment<3>(0);
-  ws.R = rotation_from_quaternion(q.segment<4>(3));
-  const Vec3 c_dot = v.segment<3>(0);
-  const Vec3 omega = v.segment<3>(3);
+  const Vec3 c = position_of(q);
+  ws.R = rotation_from_quaternion(quaternion_of(q));
+  const Vec3 c_dot = velocity_of(v);
+  const Vec3 omega = omega_of(v);
   ws.omega = omega;
   if (body.n_s > 0) {
     ws.q_s = q.segment(sl.s_q, body.n_s);
@@ -250,8 +251,7 @@ void compute_elastic_forces(const BodyModel& body, const Eigen::Ref<const VecX>&
                             BodyWorkspace& ws) {
   if (!body.has_local) return;
   ws.K_q.setZero();
-  add_membrane_forces(body.tessellation, body.stiffness,
-                      q.segment(7 + body.n_s, 3 * body.n_nodes()), ws.K_q);
+  add_membrane_forces(body.tessellation, body.stiffness, displacement_of(body.layout, q), ws.K_q);
 }
 
 void factor_generalized_mass(const BodyModel& body, const Eigen::Ref<const VecX>& q,
@@ -383,8 +383,8 @@ void solve_body_dynamics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
   solve_generalized_mass(ws, ws.r_g, alpha);
   alpha *= scale;
   // c-ddot (or c-dot) back to the world frame.
-  out.segment<3>(0) = ws.R * alpha.segment<3>(0);
-  out.segment<3>(3) = alpha.segment<3>(3);
+  velocity_of(out) = ws.R * linear_part(alpha);
+  omega_of(out) = angular_part(alpha);
   if (ns > 0) out.segment(sl.s_v, ns) = alpha.tail(ns);
   if (body.has_local) {
     solve_generalized_mass(ws, ws.b, ws.gamma);
@@ -409,8 +409,8 @@ void resplit_velocities(const BodyModel& body, const Eigen::Ref<const VecX>& q, 
   }
   // The parameter inertia's share of the q_s rows is not part of sum m P^T P.
   solve_generalized_mass(ws, ws.b, ws.gamma);
-  v.segment<3>(0) += ws.R * ws.gamma.segment<3>(0);
-  v.segment<3>(3) += ws.gamma.segment<3>(3);
+  velocity_of(v) += ws.R * linear_part(ws.gamma);
+  omega_of(v) += angular_part(ws.gamma);
   if (body.n_s > 0) v.segment(sl.s_v, body.n_s) += ws.gamma.tail(body.n_s);
   for (int i = 0; i < n; ++i) v.segment<3>(sl.d_v + 3 * i) -= apply_P(body, ws, i, ws.gamma);
 }
@@ -426,14 +426,14 @@ void restore_velocity_split(const BodyModel& body, const Eigen::Ref<const VecX>&
 Vec3 recenter_displacements(const BodyModel& body, Eigen::Ref<VecX> q, Eigen::Ref<VecX> v) {
   if (!body.has_local) return Vec3::Zero();
   const int n = body.n_nodes();
-  const int d_q = 7 + body.n_s;
+  const int d_q = body.layout.displacement_in_q();
   Vec3 mean = Vec3::Zero();
   for (int i = 0; i < n; ++i) mean += body.node_mass[i] * q.segment<3>(d_q + 3 * i);
   mean /= body.mass;
-  const Mat3 R = rotation_from_quaternion(q.segment<4>(3));
-  q.segment<3>(0) += R * mean;
+  const Mat3 R = rotation_from_quaternion(quaternion_of(q));
+  position_of(q) += R * mean;
   for (int i = 0; i < n; ++i) q.segment<3>(d_q + 3 * i) -= mean;
-  v.segment<3>(0) += R * Vec3(v.segment<3>(3)).cross(mean);
+  velocity_of(v) += R * Vec3(omega_of(v)).cross(mean);
   return mean;
 }
 

@@ -67,4 +67,21 @@ auto displacement_rate_of(const BodyLayout& layout, V&& v) {
   return v.segment(layout.displacement_in_v(), layout.n_d);
 }
 
+// Blocks of any vector in v's coordinates, a body's rates or a generalized force on its rigid and
+// global block (k = 6 + n_s entries): the translational part (c-dot, a force; world frame in v),
+// the rotational part (omega, a torque; body frame), and everything after the translation
+// (omega and q_s-dot: the entries that keep their meaning when c-dot is taken to the body frame).
+template <class V>
+auto linear_part(V&& v) {
+  return v.template segment<3>(BodyLayout::kPosition);
+}
+template <class V>
+auto angular_part(V&& v) {
+  return v.template segment<3>(BodyLayout::kOmega);
+}
+template <class V>
+auto after_translation(V&& v, int k) {
+  return v.segment(BodyLayout::kOmega, k - BodyLayout::kOmega);
+}
+
 }  // namespace pbm

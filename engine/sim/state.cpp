@@ -14,12 +14,12 @@ State initial_state(const Model& model) {
     const BodyDef& def = model.scene.bodies[b];
     auto q = st.q.segment(body.q_offset, body.q_size);
     auto v = st.v.segment(body.v_offset, body.v_size);
-    q.segment<3>(0) = def.position;
+    position_of(q) = def.position;
     const Vec4 quat = def.orientation.normalized();
-    q.segment<4>(3) = quat;
-    if (body.n_s > 0) q.segment(7, body.n_s) = body.q_s_fixed;
-    v.segment<3>(0) = def.velocity;
-    v.segment<3>(3) = rotation_from_quaternion(quat).transpose() * def.angular_velocity;
+    quaternion_of(q) = quat;
+    if (body.n_s > 0) shape_of(body.layout, q) = body.q_s_fixed;
+    velocity_of(v) = def.velocity;
+    omega_of(v) = rotation_from_quaternion(quat).transpose() * def.angular_velocity;
   }
   return st;
 }
