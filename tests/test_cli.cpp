@@ -125,6 +125,13 @@ TEST(Cli, BadInputExitsTwoNamingFileAndField) {
        "[{\"name\": \"neck\", \"a\": {\"body\": \"head\", \"node\": 0}, "
        "\"b\": {\"world\": [0, 0, 1]}}]}",
        "constraints[0].a.body: unknown body 'head'"},
+      // Hostile files of a few KB (scenes/README.md, "Limits").
+      {"deep.json", "{\"bodies\": " + std::string(10000, '[') + std::string(10000, ']') + "}",
+       "nested deeper than 32"},
+      {"rings.json",
+       "{\"bodies\": [{\"tessellation\": {\"rings\": 1000000000}, \"material\": "
+       "{\"mass\": 1}}]}",
+       "bodies[0].tessellation.rings: must be <= 4096"},
   };
   for (const BadInput& c : cases) {
     const std::string path = write_scene(c.name, c.text);

@@ -1,6 +1,6 @@
 // The studio's edits without Qt (app/studio/scene_document.h, panels.h's track keys, picking.h):
-// an edit is validated by the parser and undone exactly; the schema gives units and ranges; a
-// pixel ray hits the body the camera looks at.
+// an edit is validated by the parser and undone exactly; the format's tables give units and
+// ranges; a pixel ray hits the body the camera looks at.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -61,7 +61,7 @@ TEST(StudioDocument, HistoryDropsTheRedoBranchOnANewEdit) {
   EXPECT_EQ(h.redo().after, 2);
 }
 
-TEST(StudioDocument, SchemaGivesUnitsAndRanges) {
+TEST(StudioDocument, TheFormatGivesUnitsAndRanges) {
   const FieldInfo w1 = describe_field("/bodies/0/material/w1");
   EXPECT_EQ(w1.range, ">= 0");
   EXPECT_NE(w1.description.find("3.34"), std::string::npos);
@@ -86,8 +86,11 @@ TEST(StudioDocument, KeyframesOnTheFieldUnderEdit) {
   EXPECT_EQ(track_target_for(scene, "/bodies/0/shape/rest/a3"), "bodies[0].q_s0[3]");
   EXPECT_EQ(track_target_for(scene, "/camera/fov"), "camera.fov");
   EXPECT_EQ(track_target_for(scene, "/bodies/0/material/w1"), "");
-  EXPECT_EQ(track_target_for(scene, "/obstacles/1/center/2"), "obstacles[1].point[2]");
+  EXPECT_EQ(track_target_for(scene, "/obstacles/1/point/2"), "obstacles[1].point[2]");
   EXPECT_EQ(track_target_for(scene, "/obstacles/0/point/0"), "obstacles[0].point[0]");
+  // Both obstacles are planes: "center" is a box's key, so no field of theirs is at this pointer
+  // (a box's centre: test_scene_tracks_json.cpp).
+  EXPECT_EQ(track_target_for(scene, "/obstacles/1/center/2"), "");
   json tracks = tracks_with_key(json::array(), "gravity[2]", 1.0, -5.0);
   tracks = tracks_with_key(tracks, "gravity[2]", 0.5, -9.81);
   tracks = tracks_with_key(tracks, "gravity[2]", 1.0, -4.0);  // replaces the key at 1 s

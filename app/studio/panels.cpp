@@ -136,62 +136,63 @@ std::vector<std::string> point_constraint_names(const Scene& scene) {
   return names;
 }
 
-const char* const kCollections[] = {"bodies", "obstacles", "springs", "constraints", "tracks"};
-const SelectionKind kKinds[] = {SelectionKind::body, SelectionKind::obstacle, SelectionKind::spring,
-                                SelectionKind::constraint, SelectionKind::track};
-
 std::string selection_pointer(const Selection& s) {
-  switch (s.kind) {
-    case SelectionKind::body:
-      return "/bodies/" + std::to_string(s.index);
-    case SelectionKind::obstacle:
-      return "/obstacles/" + std::to_string(s.index);
-    case SelectionKind::spring:
-      return "/springs/" + std::to_string(s.index);
-    case SelectionKind::track:
-      return "/tracks/" + std::to_string(s.index);
-    case SelectionKind::constraint:
-      return "/constraints/" + std::to_string(s.index);
-    case SelectionKind::solver:
-      return "/solver";
-    case SelectionKind::scene:
-      return "";
-    case SelectionKind::none:
-      break;
-  }
-  return "-";
+  if (s.list.empty()) return "-";
+  if (s.list == "scene") return "";
+  if (s.index < 0) return "/" + s.list;
+  return "/" + s.list + "/" + std::to_string(s.index);
 }
 
+// Posts `list` with `item` appended and selects the new item.
+void add_item(Studio& studio, StudioActions& actions, const std::string& key, const json& items,
+              json item, const std::string& label) {
+  json with = items;
+  with.push_back(std::move(item));
+  const std::string error = actions.edit("/" + key, with, label);
+  if (error.empty()) {
+    studio.selection = {key, static_cast<int>(items.size())};
+  } else {
+    studio.message = error;
+  }
+}
+
+// The scene's lists as the format describes them (scene/scene_format.h), each item selectable and
+// deletable; "add" offers the studio's body presets for bodies and the format's new item for the
+// lists that have one.
 void outliner(Studio& studio, StudioActions& actions, const json& scene) {
-  if (ImGui::Selectable("Scene (gravity, camera)", studio.selection.kind == SelectionKind::scene)) {
-    studio.selection = {SelectionKind::scene, -1};
+  if (ImGui::Selectable("Scene (gravity, camera)", studio.selection.list == "scene")) {
+    studio.selection = {"scene", -1};
   }
-  if (ImGui::Selectable("Solver", studio.selection.kind == SelectionKind::solver)) {
-    studio.selection = {SelectionKind::solver, -1};
+  if (ImGui::Selectable("Solver", studio.selection.list == "solver")) {
+    studio.selection = {"solver", -1};
   }
-  for (int c = 0; c < static_cast<int>(std::size(kCollections)); ++c) {
-    const char* collection = kCollections[c];
-    const json items = scene.contains(collection) ? scene[collection] : json::array();
+  const std::vector<SectionDescription>& format = scene_format();
+  const SectionDescription& top = *find_section(format, "");
+  for (std::size_t c = 0; c < top.fields.size(); ++c) {
+    const FieldFormat& list = top.fields[c].format;
+    if (list.type != ValueType::list) continue;
+    const std::string key(list.key);
+    const SectionDescription* section = find_section(format, list.section);
+    const json items = scene.contains(key) ? scene[key] : json::array();
     ImGui::SetNextItemOpen(true, ImGuiCond_Once);
-    if (!ImGui::TreeNode(collection)) continue;
+    if (!ImGui::TreeNode(key.c_str())) continue;
     for (int i = 0; i < static_cast<int>(items.size()); ++i) {
       const json& item = items[i];
       std::string name = item.contains("name")     ? item["name"].get<std::string>()
                          : item.contains("target") ? item["target"].get<std::string>()
                                                    : std::to_string(i);
-      ImGui::PushID(c * 100000 + i);
-      const bool selected = studio.selection.kind == kKinds[c] && studio.selection.index == i;
+      ImGui::PushID(static_cast<int>(c) * 100000 + i);
+      const bool selected = studio.selection.list == key && studio.selection.index == i;
       if (ImGui::Selectable(name.c_str(), selected, 0,
                             ImVec2(ImGui::GetContentRegionAvail().x - 24, 0))) {
-        studio.selection = {kKinds[c], i};
+        studio.selection = {key, i};
       }
       ImGui::SameLine();
       // Bodies need one at least (the parser says so if it is the last).
       if (ImGui::SmallButton("x")) {
         json without = items;
         without.erase(without.begin() + i);
-        const std::string error =
-            actions.edit(std::string("/") + collection, without, "delete " + name);
+        const std::string error = actions.edit("/" + key, without, "delete " + name);
         if (error.empty()) {
           studio.selection = {};
         } else {
@@ -201,23 +202,22 @@ void outliner(Studio& studio, StudioActions& actions, const json& scene) {
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("delete");
       ImGui::PopID();
     }
-    if (c == 0) {
+    if (list.section == "body") {
       if (ImGui::BeginCombo("##add", "add a body...")) {
         for (const std::string& preset : body_preset_names()) {
           if (ImGui::Selectable(preset.c_str())) {
-            json with = items;
             const double x = 3.0 * static_cast<double>(items.size());
-            with.push_back(
-                body_preset(preset, preset + std::to_string(items.size()), Vec3(x, 0, 3)));
-            const std::string error = actions.edit("/bodies", with, "add " + preset);
-            if (error.empty()) {
-              studio.selection = {SelectionKind::body, static_cast<int>(items.size())};
-            } else {
-              studio.message = error;
-            }
+            add_item(studio, actions, key, items,
+                     body_preset(preset, preset + std::to_string(items.size()), Vec3(x, 0, 3)),
+                     "add " + preset);
           }
         }
         ImGui::EndCombo();
+      }
+    } else if (section && !section->new_item.is_null()) {
+      const std::string label = "add a " + std::string(section->noun);
+      if (ImGui::SmallButton(label.c_str())) {
+        add_item(studio, actions, key, items, section->new_item, label);
       }
     }
     ImGui::TreePop();
@@ -242,10 +242,8 @@ void inspector(Studio& studio, StudioActions& actions, const json& scene) {
       if (value.contains(key)) field(studio, actions, key, value[key], std::string("/") + key);
     }
     if (!value.contains("camera") && ImGui::Button("add a scene camera")) {
-      json camera = {
-          {"position", {6, -8, 4}}, {"target", {0, 0, 0}}, {"up", {0, 0, 1}}, {"fov", 40}};
       json whole = scene;
-      whole["camera"] = camera;
+      whole["camera"] = find_section(scene_format(), "camera")->new_item;
       const std::string error = actions.edit("", whole, "add camera");
       if (!error.empty()) studio.message = error;
     }
@@ -296,7 +294,7 @@ void timeline(Studio& studio, StudioActions& actions, const json& scene) {
     draw->AddRectFilled(ImVec2(x_of(a), slider_min.y + h - 4),
                         ImVec2(x_of(b + 1), slider_min.y + h), IM_COL32(90, 200, 120, 255));
   }
-  if (studio.selection.kind == SelectionKind::track && scene.contains("tracks") &&
+  if (studio.selection.list == "tracks" && scene.contains("tracks") &&
       studio.selection.index < static_cast<int>(scene["tracks"].size())) {
     for (const json& key : scene["tracks"][studio.selection.index]["keys"]) {
       const float x = x_of(key[0].get<double>() * fps);

@@ -1,6 +1,6 @@
 // What the studio edits, without Qt: edits of the scene as replacements of JSON values (the
 // runner's EditScene), checked against the parser before they are posted, an undo/redo history
-// of them, the schema's description (unit, range) of every field, and body presets.
+// of them, the format's description (unit, range) of every field, and body presets.
 #pragma once
 
 #include <optional>
@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "scene/scene.h"
+#include "scene/scene_format.h"
 
 namespace pbm {
 
@@ -48,13 +49,16 @@ class EditHistory {
   std::size_t done_ = 0;
 };
 
-// The schema's words for a field: its description (with the unit in brackets) and its range.
+// The format's words for a field (scene/scene_format.h): its description (with the unit in
+// brackets) and its range.
 struct FieldInfo {
   std::string description;
   std::string range;  // "≥ 0", "> 0", "[0, 1]", "(0, 180)", one of the enum values, or ""
   std::vector<std::string> choices;  // enum values
 };
 FieldInfo describe_field(const std::string& pointer);
+// The format's sections (describe_scene_format()), built once for the UI.
+const std::vector<SectionDescription>& scene_format();
 
 // A body preset as the scene JSON of one body ("sphere", "cube-ish", "cylinder-ish", "tapered",
 // "bent"), placed at `position`.
@@ -62,11 +66,10 @@ nlohmann::json body_preset(const std::string& preset, const std::string& name,
                            const Vec3& position);
 const std::vector<std::string>& body_preset_names();
 
-// The scene path of a track target for an inspector field, if the field can be keyframed:
-// "/gravity/2" -> "gravity[2]", "/bodies/0/shape/rest/a1" -> "bodies[0].q_s0[1]",
-// "/springs/1/target/0" -> "springs[1].target[0]", "/springs/1/stiffness",
-// "/camera/position/2", "/camera/target/0", "/camera/fov", "/obstacles/0/center/2" ->
-// "obstacles[0].point[2]" (also point/ and position/). Empty otherwise.
+// The scene path of a track target for an inspector field, if the field can be keyframed
+// (scene/track_targets.h): "/gravity/2" -> "gravity[2]", "/bodies/0/shape/rest/a1" ->
+// "bodies[0].q_s0[1]", "/obstacles/0/center/2" -> "obstacles[0].point[2]" for a box. Empty
+// otherwise.
 std::string track_target_for(const Scene& scene, const std::string& pointer);
 
 // The scene's tracks (JSON array) with a key of `value` at `time` on `target` (a new track when

@@ -13,10 +13,12 @@
 
 namespace pbm {
 
-enum class SelectionKind { none, body, obstacle, spring, constraint, track, solver, scene };
+// What the outliner or a click in the viewport selects: an item of one of the scene's lists
+// ("bodies", "obstacles", ...: the list keys of scene/scene_format.h), the solver ("solver") or
+// the scene's own fields ("scene"); "" is nothing.
 struct Selection {
-  SelectionKind kind = SelectionKind::none;
-  int index = -1;
+  std::string list;
+  int index = -1;  // the item of `list`
 };
 
 // One point of the Stats panel's plots (per computed frame shown).

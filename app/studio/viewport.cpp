@@ -130,7 +130,7 @@ Camera Viewport::view_camera() const {
 void Viewport::frame_selection() {
   if (!studio_.snapshot) return;
   draw::Bounds bounds = studio_.snapshot->focus;
-  if (studio_.selection.kind == SelectionKind::body) {
+  if (studio_.selection.list == "bodies") {
     const draw::Bounds only = pick_bounds(*studio_.snapshot, studio_.selection.index);
     if (!only.empty()) bounds = only;
   }
@@ -208,7 +208,7 @@ void Viewport::mousePressEvent(QMouseEvent* event) {
     if (const std::optional<Pick> pick = pick_body(*studio_.snapshot, ray)) {
       spring_point_ = pick->point;
       studio_.runner->post(SpringBegin{pick->body, pick->node, pick->point.cast<Real>()});
-      studio_.selection = {SelectionKind::body, pick->body};
+      studio_.selection = {"bodies", pick->body};
       drag_ = Drag::spring;
       if (studio_.status.scene) {
         drag_scene_before_ = nlohmann::json::parse(scene_to_json(*studio_.status.scene));
@@ -281,7 +281,7 @@ void Viewport::mouseReleaseEvent(QMouseEvent* event) {
     const Ray ray = pixel_ray(view_camera(), static_cast<float>(event->position().x()),
                               static_cast<float>(event->position().y()), width(), height());
     if (const std::optional<Pick> pick = pick_body(*studio_.snapshot, ray)) {
-      studio_.selection = {SelectionKind::body, pick->body};
+      studio_.selection = {"bodies", pick->body};
     }
   }
   drag_ = Drag::none;

@@ -1,31 +1,14 @@
 #include "scene/json_reader.h"
 
-#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <set>
 #include <vector>
 
 namespace pbm {
 
 namespace {
-
-// One open object or array while parsing, for the duplicate-key check.
-struct OpenContainer {
-  std::string path;
-  bool is_array = false;
-  std::size_t next_index = 0;  // arrays: index of the next element
-  std::string key;             // objects: the key whose value comes next
-  std::set<std::string> keys;  // objects: keys seen so far
-};
-
-// Path of the value about to be parsed inside `parent` (advancing an array's element count).
-std::string path_of_next_value(OpenContainer& parent) {
-  if (parent.is_array) return element_path(parent.path, parent.next_index++);
-  return child_path(parent.path, parent.key);
-}
 
 // nlohmann prefixes what() with "[json.exception.parse_error.101] "; the file name and position
 // already say where, so keep only the human part.
@@ -37,52 +20,152 @@ std::string strip_exception_id(const std::string& what) {
   return what;
 }
 
+// Builds the document from nlohmann's SAX events, checking the limits and repeated keys at each
+// event, before the document keeps the value. (nlohmann's parser with a callback searches the
+// parent for discarded values at the end of every object or array, which is quadratic in an
+// array of objects; its parser itself is iterative, so nesting cannot overflow the stack.)
+class DocumentBuilder {
+ public:
+  DocumentBuilder(const std::string& file, const JsonLimits& limits)
+      : file_(file), limits_(limits) {}
+
+  nlohmann::json take() { return std::move(root_); }
+
+  bool null() { return add(nullptr); }
+  bool boolean(bool value) { return add(value); }
+  bool number_integer(std::int64_t value) { return add(value); }
+  bool number_unsigned(std::uint64_t value) { return add(value); }
+  bool number_float(double value, const std::string&) { return add(value); }
+  bool string(std::string& value) {
+    if (value.size() > limits_.max_string_bytes) {
+      throw Error(file_, next_path(),
+                  "is a string of " + std::to_string(value.size()) + " bytes; at most " +
+                      std::to_string(limits_.max_string_bytes) + " are allowed");
+    }
+    return add(std::move(value));
+  }
+  bool binary(nlohmann::json::binary_t&) { return add(nullptr); }  // not produced by JSON text
+
+  bool start_object(std::size_t) { return open(nlohmann::json::object()); }
+  bool start_array(std::size_t) { return open(nlohmann::json::array()); }
+  bool end_object() { return close(); }
+  bool end_array() { return close(); }
+
+  bool key(std::string& key) {
+    Open& object = open_.back();
+    if (key.size() > limits_.max_string_bytes) {
+      throw Error(file_, object.path,
+                  "has a key of " + std::to_string(key.size()) + " bytes; at most " +
+                      std::to_string(limits_.max_string_bytes) + " are allowed");
+    }
+    // nlohmann would keep only the last value of a repeated key.
+    if (object.value->contains(key)) {
+      throw Error(file_, child_path(object.path, key), "duplicate key '" + key + "'");
+    }
+    object.key = key;
+    return true;
+  }
+
+  bool parse_error(std::size_t, const std::string&, const nlohmann::json::exception& e) {
+    if (const auto* error = dynamic_cast<const nlohmann::json::parse_error*>(&e)) {
+      throw Error(file_, "",
+                  "invalid JSON: " + strip_exception_id(error->what()) + " (byte " +
+                      std::to_string(error->byte) + ")");
+    }
+    // e.g. out_of_range 406: a number literal too large for a double.
+    throw Error(file_, "", "invalid JSON: " + strip_exception_id(e.what()));
+  }
+
+ private:
+  // An object or array being filled; its address is stable while it is open, because its
+  // parent gets no other member meanwhile.
+  struct Open {
+    nlohmann::json* value = nullptr;
+    std::string path;
+    std::size_t next_index = 0;  // arrays: index of the next element
+    std::string key;             // objects: the key whose value comes next
+  };
+
+  // The path of the value about to be added (built only for containers and messages: most
+  // values are numbers in arrays).
+  std::string next_path() const {
+    if (open_.empty()) return "";
+    const Open& parent = open_.back();
+    return parent.value->is_array() ? element_path(parent.path, parent.next_index)
+                                    : child_path(parent.path, parent.key);
+  }
+
+  void count_value() {
+    if (++values_ > limits_.max_values) {
+      throw Error(file_, next_path(),
+                  "the file has more than " + std::to_string(limits_.max_values) +
+                      " JSON values; a scene file may have at most that many");
+    }
+  }
+
+  // Stores `value` where the next value goes; returns where it went.
+  nlohmann::json* place(nlohmann::json value) {
+    if (open_.empty()) {
+      root_ = std::move(value);
+      return &root_;
+    }
+    Open& parent = open_.back();
+    if (parent.value->is_array()) {
+      ++parent.next_index;
+      parent.value->push_back(std::move(value));
+      return &parent.value->back();
+    }
+    nlohmann::json& member = (*parent.value)[parent.key];
+    member = std::move(value);
+    return &member;
+  }
+
+  bool add(nlohmann::json value) {
+    count_value();
+    place(std::move(value));
+    return true;
+  }
+
+  bool open(nlohmann::json container) {
+    std::string path = next_path();
+    if (static_cast<int>(open_.size()) >= limits_.max_depth) {
+      throw Error(file_, path,
+                  "nested deeper than " + std::to_string(limits_.max_depth) +
+                      " objects and arrays; a scene file nests at most that deep");
+    }
+    count_value();
+    nlohmann::json* placed = place(std::move(container));
+    open_.push_back(Open{.value = placed, .path = std::move(path), .next_index = 0, .key = {}});
+    return true;
+  }
+
+  bool close() {
+    open_.pop_back();
+    return true;
+  }
+
+  const std::string& file_;
+  const JsonLimits& limits_;
+  nlohmann::json root_;
+  std::vector<Open> open_;
+  std::size_t values_ = 0;
+};
+
 }  // namespace
 
-nlohmann::json parse_json_text(const std::string& text, const std::string& file) {
-  std::vector<OpenContainer> open;
-  const nlohmann::json::parser_callback_t track_keys =
-      [&open, &file](int /*depth*/, nlohmann::json::parse_event_t event,
-                     nlohmann::json& parsed) -> bool {
-    using Event = nlohmann::json::parse_event_t;
-    switch (event) {
-      case Event::object_start:
-      case Event::array_start: {
-        OpenContainer container;
-        container.path = open.empty() ? std::string() : path_of_next_value(open.back());
-        container.is_array = event == Event::array_start;
-        open.push_back(std::move(container));
-        break;
-      }
-      case Event::object_end:
-      case Event::array_end:
-        if (!open.empty()) open.pop_back();
-        break;
-      case Event::key: {
-        OpenContainer& object = open.back();
-        object.key = parsed.get<std::string>();
-        if (!object.keys.insert(object.key).second) {
-          throw Error(file, child_path(object.path, object.key),
-                      "duplicate key '" + object.key + "'");
-        }
-        break;
-      }
-      case Event::value:
-        if (!open.empty() && open.back().is_array) ++open.back().next_index;
-        break;
-    }
-    return true;
-  };
-  try {
-    return nlohmann::json::parse(text, track_keys);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw Error(
-        file, "",
-        "invalid JSON: " + strip_exception_id(e.what()) + " (byte " + std::to_string(e.byte) + ")");
-  } catch (const nlohmann::json::exception& e) {
-    // e.g. out_of_range 406: a number literal too large for a double.
-    throw Error(file, "", "invalid JSON: " + strip_exception_id(e.what()));
+std::string too_large_message(std::uintmax_t bytes, std::size_t max_bytes) {
+  return "is " + std::to_string(bytes) + " bytes; a scene file may have at most " +
+         std::to_string(max_bytes) + " bytes (" + std::to_string(max_bytes >> 20) + " MiB)";
+}
+
+nlohmann::json parse_json_text(const std::string& text, const std::string& file,
+                               const JsonLimits& limits) {
+  if (text.size() > limits.max_bytes) {
+    throw Error(file, "", too_large_message(text.size(), limits.max_bytes));
   }
+  DocumentBuilder builder(file, limits);
+  nlohmann::json::sax_parse(text, &builder);
+  return builder.take();
 }
 
 JsonNode root_node(const nlohmann::json& document, const std::string& file) {
@@ -99,15 +182,6 @@ std::string child_path(const std::string& path, std::string_view key) {
 
 std::string element_path(const std::string& path, std::size_t index) {
   return path + "[" + std::to_string(index) + "]";
-}
-
-void require_object(const JsonNode& node, std::initializer_list<std::string_view> allowed) {
-  if (!node.value->is_object()) fail(node, "must be an object");
-  for (const auto& [key, value] : node.value->items()) {
-    if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
-      fail(JsonNode{&value, child_path(node.path, key), node.file}, "unknown key '" + key + "'");
-    }
-  }
 }
 
 std::size_t require_array(const JsonNode& node) {
@@ -193,14 +267,6 @@ Vec2 read_vec2(const JsonNode& node) {
 }
 Vec3 read_vec3(const JsonNode& node) {
   return read_reals(node, 3);
-}
-Vec4 read_vec4(const JsonNode& node) {
-  return read_reals(node, 4);
-}
-
-Real require_positive(const JsonNode& node, Real value) {
-  if (!(value > 0)) fail(node, "must be > 0");
-  return value;
 }
 
 Real require_non_negative(const JsonNode& node, Real value) {

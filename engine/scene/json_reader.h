@@ -1,5 +1,6 @@
 // Reading a JSON document while keeping the path of every value, so that each bad-input error
-// names the file and the field (DESIGN §7: "bodies[2].material.w1: must be >= 0").
+// names the file and the field ("bodies[2].material.w1: must be >= 0"; docs/architecture.md,
+// "Errors and exit codes").
 //
 // A JsonNode is a non-owning view: the parsed document and the file name must outlive it. Every
 // read_* function either returns a value of the requested type or throws pbm::Error(file, path,
@@ -8,7 +9,7 @@
 #pragma once
 
 #include <cstddef>
-#include <initializer_list>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -28,10 +29,24 @@ struct JsonNode {
   const std::string* file = nullptr;  // for messages
 };
 
+// What parsing a document may cost; a document beyond any of them is refused while parsing,
+// naming the path where it went over, before it costs more time or memory.
+struct JsonLimits {
+  std::size_t max_bytes = 0;         // of the text
+  int max_depth = 0;                 // objects and arrays inside each other
+  std::size_t max_values = 0;        // every value, containers included
+  std::size_t max_string_bytes = 0;  // of one string or key
+};
+
 // Parses `text` as strict JSON (no comments). Malformed text throws pbm::Error(file, "", ...)
 // whose message holds the line, column and byte offset; a key repeated inside one object throws
 // with the repeated key's path, because nlohmann would otherwise keep only the last value.
-nlohmann::json parse_json_text(const std::string& text, const std::string& file);
+// Every value is counted, and its nesting, its strings' lengths checked, as it is parsed.
+nlohmann::json parse_json_text(const std::string& text, const std::string& file,
+                               const JsonLimits& limits);
+
+// "is 40000000 bytes; a scene file may have at most 33554432 bytes (32 MiB)".
+std::string too_large_message(std::uintmax_t bytes, std::size_t max_bytes);
 
 // The root node of a parsed document.
 JsonNode root_node(const nlohmann::json& document, const std::string& file);
@@ -42,9 +57,6 @@ JsonNode root_node(const nlohmann::json& document, const std::string& file);
 std::string child_path(const std::string& path, std::string_view key);
 std::string element_path(const std::string& path, std::size_t index);
 
-// Fails unless `node` is an object; then fails at "<path>.<key>" with "unknown key '<key>'" for
-// the first key not in `allowed`.
-void require_object(const JsonNode& node, std::initializer_list<std::string_view> allowed);
 // Fails unless `node` is an array; returns its length.
 std::size_t require_array(const JsonNode& node);
 
@@ -62,18 +74,16 @@ std::string read_string(const JsonNode& node);
 VecX read_reals(const JsonNode& node, int n);
 Vec2 read_vec2(const JsonNode& node);
 Vec3 read_vec3(const JsonNode& node);
-Vec4 read_vec4(const JsonNode& node);
 
 // Range checks on a value already read from `node`; the message names the bound.
-Real require_positive(const JsonNode& node, Real value);                    // "must be > 0"
 Real require_non_negative(const JsonNode& node, Real value);                // "must be >= 0"
 Real require_in_range(const JsonNode& node, Real value, Real lo, Real hi);  // "must be in [lo, hi]"
 
 // Shortest decimal text that reads back as the same double ("0.25", "1e-06").
 std::string format_real(Real value);
 
-// A closed set of names for an enum (STYLE §12) is a constexpr array of (name, value) pairs,
-// shared by the reader and the writer (scene/scene_enum_names.h).
+// A closed set of names for an enum is a constexpr array of (name, value) pairs, shared by the
+// reader and the writer so that the two cannot disagree (scene/scene_enum_names.h).
 template <typename Names>
 using EnumOf = std::remove_cvref_t<decltype(std::declval<const Names&>()[0].second)>;
 

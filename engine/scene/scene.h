@@ -18,10 +18,8 @@
 
 namespace pbm {
 
-// A keyframed value. target is a scene path in index form (the reader rewrites the named forms):
-// "bodies[i].q_s0[k]", "gravity[k]", "springs[i].target[k]", "springs[i].stiffness",
-// "camera.position[k]", "camera.target[k]", "camera.fov", "obstacles[i].point[k]",
-// "obstacles[i].rotation[k]".
+// A keyframed value. target is one of the targets of scene/track_targets.h in its index form,
+// e.g. "bodies[0].q_s0[6]" (the reader rewrites the other accepted forms).
 struct TrackDef {
   std::string target;
   Interpolation interpolation = Interpolation::linear;

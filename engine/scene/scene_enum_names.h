@@ -1,5 +1,6 @@
-// The names scene files use for each closed set of kinds in scene.h (scenes/README.md), shared by
-// the reader (scene_json.cpp) and the writer (scene_json_write.cpp) so the two cannot disagree.
+// The names scene files use for each closed set of kinds in scene.h (scenes/README.md): the
+// "kind" rows of the format's tables (scene_*_json.cpp) read and write them, so the reader, the
+// writer and the schema check cannot disagree.
 #pragma once
 
 #include <array>

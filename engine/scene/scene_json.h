@@ -1,10 +1,13 @@
 // Scene files: JSON text <-> Scene (engine/scene/scene.h). The format, with every key, unit and
-// range, is documented in scenes/README.md and scenes/scene.schema.json.
+// range, is the tables of scene/scene_format.h, documented in scenes/README.md and
+// scenes/scene.schema.json.
 //
-// Loading validates everything once, at the boundary (STYLE §11): every error is a pbm::Error
-// whose file() is the scene file and whose path() is the JSON path of the offending value
-// ("bodies[0].material.w1", "" for whole-file errors such as malformed JSON). A Scene is returned
-// only when all of it is valid; there is never a half-built Scene.
+// Loading validates everything once, at the boundary, so that nothing past it needs to check
+// its input again: every error is a pbm::Error whose file() is the scene file and whose path() is
+// the JSON path of the offending value ("bodies[0].material.w1", "" for whole-file errors such as
+// malformed JSON). A Scene is returned only when all of it is valid; there is never a half-built
+// Scene. What a file can cost is bounded (scene/scene_format.h, "limits"): a file too large, too
+// deep, with too many values, items or nodes is refused before the work it asks for.
 #pragma once
 
 #include <string>
@@ -14,7 +17,8 @@
 namespace pbm {
 
 // Reads and validates the scene file at `path`. Scene::file is set to `path`.
-// Throws pbm::Error("cannot open file") when it cannot be read.
+// Throws pbm::Error("cannot open file") when it cannot be read; a file above kMaxSceneFileBytes
+// is refused before it is read.
 Scene load_scene(const std::string& path);
 
 // Validates `json_text`; `file_for_messages` becomes Scene::file and the file of every error.

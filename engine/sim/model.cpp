@@ -1,7 +1,5 @@
 #include "sim/model.h"
 
-#include <cstdio>
-
 #include "core/error.h"
 
 namespace pbm {
@@ -17,48 +15,19 @@ TrackModel build_track(const Scene& scene, int t) {
   TrackModel track;
   track.interpolation = def.interpolation;
   track.keys = def.keys;
-  int a = 0, k = 0;
-  char tail = 0;
-  const char* s = def.target.c_str();
-  if (std::sscanf(s, "bodies[%d].q_s0[%d]%c", &a, &k, &tail) == 2) {
-    track.target = TrackTarget::body_rest_parameter;
-    if (a < 0 || a >= static_cast<int>(scene.bodies.size()) || k < 0 ||
-        k >= shape_parameter_count(scene.bodies[a].shape)) {
-      throw Error(scene.file, path, "no such body parameter '" + def.target + "'");
-    }
-  } else if (std::sscanf(s, "gravity[%d]%c", &k, &tail) == 1) {
-    track.target = TrackTarget::gravity;
-    if (k < 0 || k > 2) throw Error(scene.file, path, "gravity has components 0..2");
-  } else if (std::sscanf(s, "springs[%d].target[%d]%c", &a, &k, &tail) == 2) {
-    track.target = TrackTarget::spring_target;
-    if (a < 0 || a >= static_cast<int>(scene.springs.size()) || k < 0 || k > 2) {
-      throw Error(scene.file, path, "no such spring target '" + def.target + "'");
-    }
-  } else if (std::sscanf(s, "springs[%d].stiffness%c", &a, &tail) == 1) {
-    track.target = TrackTarget::spring_stiffness;
-    if (a < 0 || a >= static_cast<int>(scene.springs.size())) {
-      throw Error(scene.file, path, "no such spring '" + def.target + "'");
-    }
-  } else if (std::sscanf(s, "camera.position[%d]%c", &k, &tail) == 1 && k >= 0 && k <= 2 &&
-             scene.camera) {
-    track.target = TrackTarget::camera_position;
-  } else if (std::sscanf(s, "camera.target[%d]%c", &k, &tail) == 1 && k >= 0 && k <= 2 &&
-             scene.camera) {
-    track.target = TrackTarget::camera_target;
-  } else if (def.target == "camera.fov" && scene.camera) {
-    track.target = TrackTarget::camera_fov;
-  } else if (std::sscanf(s, "obstacles[%d].point[%d]%c", &a, &k, &tail) == 2 ||
-             std::sscanf(s, "obstacles[%d].rotation[%d]%c", &a, &k, &tail) == 2) {
-    track.target = def.target.find(".point[") != std::string::npos ? TrackTarget::obstacle_point
-                                                                   : TrackTarget::obstacle_rotation;
-    if (a < 0 || a >= static_cast<int>(scene.obstacles.size()) || k < 0 || k > 2) {
-      throw Error(scene.file, path, "no such obstacle component '" + def.target + "'");
-    }
-  } else {
-    throw Error(scene.file, path, "unknown track target '" + def.target + "'");
+  // The reader stored the target in its index form, checked against the scene; a Scene made in
+  // code is checked the same way.
+  std::string problem;
+  const std::string stored = resolve_track_target(scene, def.target, problem);
+  if (stored != def.target) {
+    throw Error(
+        scene.file, path,
+        stored.empty() ? problem : "'" + def.target + "' is not in index form ('" + stored + "')");
   }
-  track.object = a;
-  track.index = k;
+  const TrackTargetRef ref = *parse_track_target(def.target);
+  track.target = ref.target;
+  track.object = ref.object;
+  track.index = ref.index;
   if (track.keys.empty())
     throw Error(scene.file, "tracks[" + std::to_string(t) + "].keys",
                 "needs at least one keyframe");

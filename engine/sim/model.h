@@ -16,21 +16,11 @@
 #include "core/types.h"
 #include "deform/body_model.h"
 #include "scene/scene.h"
+#include "scene/track_targets.h"
 #include "sim/snapshot_geometry.h"
 
 namespace pbm {
 
-enum class TrackTarget {
-  body_rest_parameter,
-  gravity,
-  spring_target,
-  spring_stiffness,
-  camera_position,
-  camera_target,
-  camera_fov,
-  obstacle_point,    // obstacles[i].point[k]: plane point, box centre, mesh origin
-  obstacle_rotation  // obstacles[i].rotation[k]: rotation vector applied before the orientation
-};
 struct TrackModel {
   TrackTarget target = TrackTarget::gravity;
   int object = 0;  // body, spring or obstacle index

@@ -11,6 +11,7 @@
 #include "core/bits.h"
 #include "core/error.h"
 #include "scene/scene_json.h"
+#include "scene/track_targets.h"
 
 namespace pbm {
 namespace {
@@ -38,12 +39,8 @@ std::string path_of_pointer(const std::string& pointer) {
   return path;
 }
 
-std::string spring_path(int spring) {
-  return "springs[" + std::to_string(spring) + "]";
-}
-
 std::string target_track_name(int spring, int k) {
-  return spring_path(spring) + ".target[" + std::to_string(k) + "]";
+  return format_track_target(TrackTarget::spring_target, spring, k);
 }
 
 // Index of the track driving `target` in scene.tracks (the Model's tracks have the same order),
@@ -223,7 +220,7 @@ std::string RunnerCore::handle(const SpringBegin& begin) {
                             .keys = {{t, begin.target[k]}}});
   }
   // Grabbing a body that is at rest must not jolt it: the pull grows over kSpringRampSeconds.
-  scene.tracks.push_back({.target = spring_path(index) + ".stiffness",
+  scene.tracks.push_back({.target = format_track_target(TrackTarget::spring_stiffness, index, 0),
                           .interpolation = Interpolation::linear,
                           .keys = {{t, 0.0}, {t + kSpringRampSeconds, p.stiffness}}});
   std::string refusal = rebuild(std::move(scene));

@@ -1,0 +1,240 @@
+// What the scene-file tests (tests/test_scene_*.cpp) share: a scene using every section and
+// both forms of every choice, a field-by-field comparison of two scenes, and the check that
+// parsing fails at an exact JSON path with a given message.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <utility>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "scene/scene_json.h"
+
+namespace pbm::scene_test {
+
+using nlohmann::json;
+
+inline const std::string kFile = "test.json";
+
+inline std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Every section and both forms of every choice (named and array q_s, node and material point,
+// plane and box), with values chosen so that defaults and normalization are visible.
+inline json full_scene() {
+  return json::parse(R"({
+    "name": "jello-ball",
+    "gravity": [0, 0, -9.81],
+    "camera": {"position": [0, -10, 3], "target": [0, 0, 1], "up": [0, 0, 2], "fov": 35},
+    "solver": {"dt": 0.031, "integrator": "rk45", "tolerance": 1e-5, "fps": 24, "duration": 3,
+               "contact_step_reduction": true, "contact_dt_factor": 0.5, "max_retries": 6,
+               "energy_growth_bound": 2, "constraint_alpha": 7, "constraint_solver": "sparse",
+               "body_collisions": false, "self_collision": true, "body_friction": 0.7,
+               "body_elasticity": 250, "collision_margin": 0.03},
+    "bodies": [
+      {"name": "jello", "level": "global", "order": "first",
+       "shape": {"kind": "taper_bend", "q_s": {"a0": 2.0, "eps1": 0.5, "t1": 0.3},
+                 "rest": {"t1": 0.1},
+                 "stiffness": [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11]},
+       "position": [1, 2, 3], "orientation": [2, 0, 0, 0], "velocity": [0.5, 0, 0],
+       "angular_velocity": [0, 0, 1],
+       "tessellation": {"kind": "quads", "rings": 4, "segments": 5},
+       "material": {"w0": 10, "w1": 5, "nodal_mass": 0.25, "damping": 0.7, "color": [1, 0.5, 0],
+                    "roughness": 0.2}},
+      {"orientation": [1, 1, 0, 0], "material": {"mass": 3}}
+    ],
+    "obstacles": [
+      {"name": "floor", "normal": [3, 4, 0], "point": [0, 0, -1], "size": [5, 6], "friction": 1},
+      {"kind": "box", "center": [1, 1, 1], "half_extents": [0.5, 1, 2],
+       "orientation": [0, 0, 0, 3], "elasticity": 0},
+      {"name": "rock", "kind": "mesh", "file": "rock.obj", "position": [2, 0, 0],
+       "orientation": [1, 0, 0, 1], "scale": 0.5}
+    ],
+    "force_fields": [
+      {"kind": "force_per_node", "value": [1, 0, 0], "bodies": ["jello", 1]},
+      {"value": [0, 0.5, 0]}
+    ],
+    "springs": [
+      {"name": "mouse", "body": "jello", "node": 21, "target": [0, 0, 5], "stiffness": 50,
+       "damping": 2, "t_begin": 1, "t_end": 4, "max_force": 30},
+      {"body": 1, "material_point": [0.5, -1], "target": [1, 1, 1]}
+    ],
+    "tracks": [
+      {"target": "bodies[0].q_s0.t1", "interpolation": "smooth", "keys": [[0, 0], [1, 0.5]]},
+      {"target": "gravity[2]", "keys": [[0, -9.81]]},
+      {"target": "springs[0].target[1]", "interpolation": "step", "keys": [[0, 0], [2, 1]]},
+      {"target": "springs[1].stiffness", "keys": [[0, 100], [0.5, 200], [1, 100]]}
+    ],
+    "constraints": [
+      {"name": "neck", "a": {"body": "jello", "node": 3},
+       "b": {"body": 1, "material_point": [0.2, 0.3]}, "alpha": 20},
+      {"a": {"body": 1, "point": [0, 0, 1]}, "b": {"world": [0, 0, 5]}, "beta": 3},
+      {"name": "pivot", "kind": "hinge", "a": {"body": 0, "point": [0, 0, 0]},
+       "b": {"body": 1, "point": [1, 0, 0]}, "axis": [0, 2, 0], "length": 0.5, "stiffness": 40,
+       "rest_angle": 0.1, "damping": 0.5}
+    ]
+  })");
+}
+
+// Every field of a and b equal, bit for bit.
+inline void expect_same_scene(const Scene& a, const Scene& b) {
+  EXPECT_EQ(a.name, b.name);
+  EXPECT_EQ(a.gravity, b.gravity);
+  EXPECT_EQ(a.solver.dt, b.solver.dt);
+  EXPECT_EQ(a.solver.integrator, b.solver.integrator);
+  EXPECT_EQ(a.solver.tolerance, b.solver.tolerance);
+  EXPECT_EQ(a.solver.fps, b.solver.fps);
+  EXPECT_EQ(a.solver.duration, b.solver.duration);
+  EXPECT_EQ(a.solver.contact_step_reduction, b.solver.contact_step_reduction);
+  EXPECT_EQ(a.solver.contact_dt_factor, b.solver.contact_dt_factor);
+  EXPECT_EQ(a.solver.max_retries, b.solver.max_retries);
+  EXPECT_EQ(a.solver.energy_growth_bound, b.solver.energy_growth_bound);
+  ASSERT_EQ(a.bodies.size(), b.bodies.size());
+  for (std::size_t i = 0; i < a.bodies.size(); ++i) {
+    const BodyDef& x = a.bodies[i];
+    const BodyDef& y = b.bodies[i];
+    EXPECT_EQ(x.name, y.name);
+    EXPECT_EQ(x.level, y.level);
+    EXPECT_EQ(x.order, y.order);
+    EXPECT_EQ(x.shape, y.shape);
+    ASSERT_EQ(x.q_s.size(), y.q_s.size());
+    ASSERT_EQ(x.q_s0.size(), y.q_s0.size());
+    ASSERT_EQ(x.k_s.size(), y.k_s.size());
+    EXPECT_EQ(x.q_s, y.q_s);
+    EXPECT_EQ(x.q_s0, y.q_s0);
+    EXPECT_EQ(x.k_s, y.k_s);
+    EXPECT_EQ(x.position, y.position);
+    EXPECT_EQ(x.orientation, y.orientation);  // bit-exact: no renormalization drift
+    EXPECT_EQ(x.velocity, y.velocity);
+    EXPECT_EQ(x.angular_velocity, y.angular_velocity);
+    EXPECT_EQ(x.tessellation.kind, y.tessellation.kind);
+    EXPECT_EQ(x.tessellation.rings, y.tessellation.rings);
+    EXPECT_EQ(x.tessellation.segments, y.tessellation.segments);
+    EXPECT_EQ(x.material.w0, y.material.w0);
+    EXPECT_EQ(x.material.w1, y.material.w1);
+    EXPECT_EQ(x.material.nodal_mass, y.material.nodal_mass);
+    EXPECT_EQ(x.material.mass, y.material.mass);
+    EXPECT_EQ(x.material.damping, y.material.damping);
+    EXPECT_EQ(x.material.color, y.material.color);
+    EXPECT_EQ(x.material.roughness, y.material.roughness);
+  }
+  ASSERT_EQ(a.obstacles.size(), b.obstacles.size());
+  for (std::size_t i = 0; i < a.obstacles.size(); ++i) {
+    const ObstacleDef& x = a.obstacles[i];
+    const ObstacleDef& y = b.obstacles[i];
+    EXPECT_EQ(x.name, y.name);
+    EXPECT_EQ(x.kind, y.kind);
+    EXPECT_EQ(x.point, y.point);
+    EXPECT_EQ(x.normal, y.normal);
+    EXPECT_EQ(x.half_extents, y.half_extents);
+    EXPECT_EQ(x.orientation, y.orientation);
+    EXPECT_EQ(x.size, y.size);
+    EXPECT_EQ(x.file, y.file);
+    EXPECT_EQ(x.scale, y.scale);
+    EXPECT_EQ(x.elasticity, y.elasticity);
+    EXPECT_EQ(x.friction, y.friction);
+  }
+  ASSERT_EQ(a.camera.has_value(), b.camera.has_value());
+  if (a.camera) {
+    EXPECT_EQ(a.camera->position, b.camera->position);
+    EXPECT_EQ(a.camera->target, b.camera->target);
+    EXPECT_EQ(a.camera->up, b.camera->up);
+    EXPECT_EQ(a.camera->fov, b.camera->fov);
+  }
+  ASSERT_EQ(a.force_fields.size(), b.force_fields.size());
+  for (std::size_t i = 0; i < a.force_fields.size(); ++i) {
+    EXPECT_EQ(a.force_fields[i].kind, b.force_fields[i].kind);
+    EXPECT_EQ(a.force_fields[i].value, b.force_fields[i].value);
+    EXPECT_EQ(a.force_fields[i].bodies, b.force_fields[i].bodies);
+  }
+  ASSERT_EQ(a.springs.size(), b.springs.size());
+  for (std::size_t i = 0; i < a.springs.size(); ++i) {
+    const SpringDef& x = a.springs[i];
+    const SpringDef& y = b.springs[i];
+    EXPECT_EQ(x.name, y.name);
+    EXPECT_EQ(x.body, y.body);
+    EXPECT_EQ(x.node, y.node);
+    ASSERT_EQ(x.material_point.has_value(), y.material_point.has_value());
+    if (x.material_point) {
+      EXPECT_EQ(*x.material_point, *y.material_point);
+    }
+    EXPECT_EQ(x.target, y.target);
+    EXPECT_EQ(x.stiffness, y.stiffness);
+    EXPECT_EQ(x.damping, y.damping);
+    EXPECT_EQ(x.t_begin, y.t_begin);
+    EXPECT_EQ(x.t_end, y.t_end);
+    EXPECT_EQ(x.max_force, y.max_force);
+  }
+  EXPECT_EQ(a.solver.constraint_alpha, b.solver.constraint_alpha);
+  EXPECT_EQ(a.solver.constraint_beta, b.solver.constraint_beta);
+  EXPECT_EQ(a.solver.constraint_solver, b.solver.constraint_solver);
+  EXPECT_EQ(a.solver.body_collisions, b.solver.body_collisions);
+  EXPECT_EQ(a.solver.self_collision, b.solver.self_collision);
+  EXPECT_EQ(a.solver.body_friction, b.solver.body_friction);
+  EXPECT_EQ(a.solver.body_elasticity, b.solver.body_elasticity);
+  EXPECT_EQ(a.solver.collision_margin, b.solver.collision_margin);
+  ASSERT_EQ(a.constraints.size(), b.constraints.size());
+  for (std::size_t i = 0; i < a.constraints.size(); ++i) {
+    const ConstraintDef& x = a.constraints[i];
+    const ConstraintDef& y = b.constraints[i];
+    EXPECT_EQ(x.name, y.name);
+    EXPECT_EQ(x.kind, y.kind);
+    for (const auto& [u, w] : {std::pair{&x.a, &y.a}, std::pair{&x.b, &y.b}}) {
+      EXPECT_EQ(u->body, w->body);
+      EXPECT_EQ(u->node, w->node);
+      EXPECT_EQ(u->material_point, w->material_point);
+      EXPECT_EQ(u->point, w->point);
+      EXPECT_EQ(u->world, w->world);
+    }
+    EXPECT_EQ(x.alpha, y.alpha);
+    EXPECT_EQ(x.beta, y.beta);
+    EXPECT_EQ(x.axis, y.axis);
+    EXPECT_EQ(x.length, y.length);
+    EXPECT_EQ(x.stiffness, y.stiffness);
+    EXPECT_EQ(x.rest_angle, y.rest_angle);
+    EXPECT_EQ(x.damping, y.damping);
+  }
+  ASSERT_EQ(a.tracks.size(), b.tracks.size());
+  for (std::size_t i = 0; i < a.tracks.size(); ++i) {
+    EXPECT_EQ(a.tracks[i].target, b.tracks[i].target);
+    EXPECT_EQ(a.tracks[i].interpolation, b.tracks[i].interpolation);
+    ASSERT_EQ(a.tracks[i].keys.size(), b.tracks[i].keys.size());
+    for (std::size_t j = 0; j < a.tracks[i].keys.size(); ++j) {
+      EXPECT_EQ(a.tracks[i].keys[j].time, b.tracks[i].keys[j].time);
+      EXPECT_EQ(a.tracks[i].keys[j].value, b.tracks[i].keys[j].value);
+    }
+  }
+}
+
+// Parses `text`, expects pbm::Error at exactly `path`, with `message` in what().
+inline void expect_text_error(const std::string& text, const std::string& path,
+                              const std::string& message) {
+  try {
+    parse_scene(text, kFile);
+    ADD_FAILURE() << "expected an error at '" << path << "'";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(e.file(), kFile) << what;
+    EXPECT_EQ(e.path(), path) << what;
+    EXPECT_NE(what.find(kFile + ": "), std::string::npos) << what;
+    if (!path.empty()) {
+      EXPECT_NE(what.find(path + ": "), std::string::npos) << what;
+    }
+    EXPECT_NE(what.find(message), std::string::npos) << what << "\n  expected: " << message;
+  }
+}
+
+inline void expect_error(const json& j, const std::string& path, const std::string& message) {
+  expect_text_error(j.dump(), path, message);
+}
+
+}  // namespace pbm::scene_test
