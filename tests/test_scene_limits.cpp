@@ -107,13 +107,13 @@ TEST(SceneLimits, TessellationIsBoundedPerFieldAndPerScene) {
 }
 
 TEST(SceneLimits, ListLengthsAreRefusedBeforeTheirItemsAreRead) {
-  expect_text_error(R"({"bodies": [)" + repeated(kBody, 257) + "]}", "bodies",
+  expect_text_error(R"({"bodies": [)" + repeated(kBody, 1025) + "]}", "bodies",
+                    "must have at most 1024 entries (got 1025)");
+  expect_text_error(scene_with("obstacles", repeated("{}", 257)), "obstacles",
                     "must have at most 256 entries (got 257)");
-  expect_text_error(scene_with("obstacles", repeated("{}", 65)), "obstacles",
-                    "must have at most 64 entries (got 65)");
   // The items are not read: these would each be an error.
-  expect_text_error(scene_with("constraints", repeated("{}", 257)), "constraints",
-                    "must have at most 256 entries (got 257)");
+  expect_text_error(scene_with("constraints", repeated("{}", 1025)), "constraints",
+                    "must have at most 1024 entries (got 1025)");
   expect_text_error(scene_with("tracks", repeated("{}", 4097)), "tracks",
                     "must have at most 4096 entries (got 4097)");
   expect_text_error(scene_with("springs", repeated("{}", 4097)), "springs",

@@ -17,13 +17,13 @@ namespace {
 // How many items each list may hold (scenes/README.md, "Limits"): far above any scene of the
 // book, low enough that the checks between items (unique names, one track a target), the mesh
 // obstacles' distance grids and the dense constraint solve (3 rows a point, two points a hinge:
-// at most 1536 rows) stay cheap.
-constexpr Real kMaxBodies = 256;
-constexpr Real kMaxObstacles = 64;
+// at most 6144 rows, a 300 MB matrix) stay affordable; the node budget bounds the bodies' cost.
+constexpr Real kMaxBodies = 1024;
+constexpr Real kMaxObstacles = 256;
 constexpr Real kMaxForceFields = 256;
 constexpr Real kMaxSprings = 4096;
 constexpr Real kMaxTracks = 4096;
-constexpr Real kMaxConstraints = 256;
+constexpr Real kMaxConstraints = 1024;
 
 // Bodies come before every list that refers to them, tracks after what they drive.
 constexpr auto kSceneFields = std::to_array<Field<Scene>>({
