@@ -117,4 +117,39 @@ inline Real measured_decay_rate(Simulation& sim, Real t0, Real t1) {
   return log_decay_rate(violation_samples(sim, t0, t1));
 }
 
+// A rigid plank (1 x 0.2 x 0.05 m half-sizes, 1 kg) hinged to the world at its centre about y with
+// a rotational spring of 50 N m/rad whose rest is 0.3 rad from the start, no gravity, rk4 at
+// 1 ms: a torsional oscillator about the axis. The hinge is the scene's only constraint.
+inline Scene hinged_plank_scene(Real fps) {
+  Scene s;
+  s.gravity = Vec3::Zero();
+  s.solver.dt = 1e-3;
+  s.solver.fps = fps;
+  s.solver.integrator = IntegratorKind::rk4;
+  BodyDef plank = part("plank", DeformLevel::rigid, Vec3(0, 0, 1), 1.0);
+  plank.q_s[1] = 1.0;
+  plank.q_s[2] = 0.2;
+  plank.q_s[3] = 0.05;
+  plank.q_s0 = plank.q_s;
+  plank.material.damping = 0;
+  s.bodies.push_back(plank);
+  ConstraintDef hinge = joint(body_point(0, Vec3::Zero()), world(Vec3(0, 0, 1)));
+  hinge.kind = ConstraintKind::hinge;
+  hinge.axis = Vec3::UnitY();
+  hinge.stiffness = 50;
+  hinge.rest_angle = 0.3;
+  s.constraints.push_back(hinge);
+  return s;
+}
+
+// I_yy of a rigid body about its centre, from its lumped node masses (what the dynamics uses).
+inline Real inertia_about_y(const BodyModel& b) {
+  Real inertia = 0;
+  for (int i = 0; i < b.n_nodes(); ++i) {
+    const Vec3& p = b.s_fixed[i];
+    inertia += b.node_mass[i] * (p.x() * p.x() + p.z() * p.z());
+  }
+  return inertia;
+}
+
 }  // namespace pbm::test::constraints

@@ -71,35 +71,12 @@ TEST(ConstraintParameters, EachJointDecaysAtItsOwnAlphaAndBeta) {
 // I theta'' = -k (theta - theta_0) - c theta', released at rest 0.3 rad from theta_0. The angle
 // follows the damped oscillator's closed form, decay rate c / (2 I).
 TEST(ConstraintParameters, HingeDamperDecaysTheSwingAtCOverTwoI) {
-  Scene s;
-  s.gravity = Vec3::Zero();
-  s.solver.dt = 1e-3;
-  s.solver.fps = 100;
-  s.solver.integrator = IntegratorKind::rk4;
-  BodyDef plank = part("plank", DeformLevel::rigid, Vec3(0, 0, 1), 1.0);
-  plank.q_s[1] = 1.0;
-  plank.q_s[2] = 0.2;
-  plank.q_s[3] = 0.05;
-  plank.q_s0 = plank.q_s;
-  plank.material.damping = 0;
-  s.bodies.push_back(plank);
-  ConstraintDef hinge = joint(body_point(0, Vec3::Zero()), world(Vec3(0, 0, 1)));
-  hinge.kind = ConstraintKind::hinge;
-  hinge.axis = Vec3::UnitY();
-  hinge.stiffness = 50;
-  hinge.rest_angle = 0.3;
-  Simulation probe(s);
-  const BodyModel& b = probe.model.bodies[0];
-  Real inertia = 0;  // about y through the centre, from the lumped node masses
-  for (int i = 0; i < b.n_nodes(); ++i) {
-    inertia += b.node_mass[i] *
-               (b.s_fixed[i].x() * b.s_fixed[i].x() + b.s_fixed[i].z() * b.s_fixed[i].z());
-  }
+  Scene s = hinged_plank_scene(100);
+  const Real inertia = inertia_about_y(Simulation(s).model.bodies[0]);
   const Real omega0 = std::sqrt(50 / inertia);
-  hinge.damping = 0.6 * inertia * omega0;  // gamma = 0.3 omega0
-  s.constraints.push_back(hinge);
+  s.constraints[0].damping = 0.6 * inertia * omega0;  // gamma = 0.3 omega0
   Simulation sim(s);
-  const Real gamma = hinge.damping / (2 * inertia);
+  const Real gamma = s.constraints[0].damping / (2 * inertia);
   const Real omega = std::sqrt(omega0 * omega0 - gamma * gamma);
   Real worst = 0;
   while (sim.state.time < 3 * 2 * std::numbers::pi / omega) {

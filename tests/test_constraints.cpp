@@ -284,35 +284,9 @@ TEST(Constraints, CoincidentAnchorsStartSatisfiedWithoutNaN) {
 TEST(Constraints, HingeSpringOscillatesAboutItsAxis) {
   // A rigid plank hinged to the world about y with a rotational spring k, twisted by 0.3 rad from
   // rest: it swings about the axis at omega^2 = k / I_yy, the pivot stays put.
-  Scene s;
-  s.gravity = Vec3::Zero();
-  s.solver.dt = 1e-3;
-  s.solver.fps = 1000;
-  s.solver.integrator = IntegratorKind::rk4;
-  BodyDef plank = part("plank", DeformLevel::rigid, Vec3(0, 0, 1), 1.0);
-  plank.q_s[1] = 1.0;
-  plank.q_s[2] = 0.2;
-  plank.q_s[3] = 0.05;
-  plank.q_s0 = plank.q_s;
-  plank.material.damping = 0;
-  s.bodies.push_back(plank);
-  ConstraintDef hinge = joint(body_point(0, Vec3::Zero()), world(Vec3(0, 0, 1)));
-  hinge.kind = ConstraintKind::hinge;
-  hinge.axis = Vec3::UnitY();
-  hinge.stiffness = 50;
-  hinge.rest_angle = 0.3;
-  s.constraints.push_back(hinge);
-  Simulation sim(s);
+  Simulation sim(hinged_plank_scene(1000));
   ASSERT_EQ(sim.model.constraints.points.size(), 2u);
-  const Real inertia = [&] {
-    const BodyModel& b = sim.model.bodies[0];
-    Real I = 0;
-    for (int i = 0; i < b.n_nodes(); ++i) {
-      const Vec3& p = b.s_fixed[i];
-      I += b.node_mass[i] * (p.x() * p.x() + p.z() * p.z());
-    }
-    return I;
-  }();
+  const Real inertia = inertia_about_y(sim.model.bodies[0]);
   const Real period = 2 * std::acos(-1.0) * std::sqrt(inertia / 50);
   FrameStats s0;
   measure_state(sim.world, sim.inputs, sim.state, sim.ws, s0);
