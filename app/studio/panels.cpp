@@ -342,6 +342,17 @@ void stats(Studio& studio) {
     total += f.stage_seconds[k];
   }
   ImGui::Text("%-15s %8.3f ms", "step total", 1e3 * total);
+  // The same frame by subsystem (a stage's time goes to the subsystem whose hook ran in it; the
+  // integrator's own arithmetic and the drive belong to none).
+  ImGui::Separator();
+  for (int k = 0; k < kSubsystemCount; ++k) {
+    if (f.subsystem_seconds[k] == 0) continue;  // absent from the scene
+    ImGui::Text("%-15s %8.3f ms", subsystem_name(static_cast<SubsystemId>(k)),
+                1e3 * f.subsystem_seconds[k]);
+  }
+  ImGui::Text("%d substeps, %d retries, %d rate evaluations", f.substeps, f.retries,
+              f.evaluations);
+  ImGui::Separator();
   ImGui::Text("kinetic %.4g J  elastic %.4g J  potential %.4g J", f.kinetic, f.elastic,
               f.potential);
   if (f.min_distance > 1e299) {
