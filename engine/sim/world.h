@@ -62,7 +62,9 @@ FrameResult advance_frame(const World& world, const Inputs& inputs, State& state
 
 // Called before and after every hook of a substep (after = true once it ran), with the state
 // it corrects: a test measures what one stage of the engine's own step does (the collision
-// stage's momentum, say) without running a copy of it.
+// stage's momentum, say) without running a copy of it. A FunctionRef refers to its callable:
+// name the lambda first (`auto watch = [&](...) {...}; const StageObserver observer = watch;`),
+// since one made from a temporary lambda outlives it.
 using StageObserver = FunctionRef<void(StepStage stage, SubsystemId subsystem, bool after,
                                        const State& state, Workspace& ws)>;
 
