@@ -117,7 +117,7 @@ int run_simulate(const SimulateOptions& o) {
   }
 
   const Model& model = sim->model;
-  for (const std::string& note : model.constraints.notes) spdlog::warn("{}: {}", o.scene, note);
+  if (!model.notes.empty()) spdlog::warn("{}: {}", o.scene, model.notes);
   const State& state = sim->state;
   bool first_stats = true;
   auto emit = [&](long frame, const FrameStats& fs_) {

@@ -153,6 +153,7 @@ BodyModel build_body_model(const BodyDef& def, Real dt, const std::string& file,
   body.layout.n_d = body.has_local ? 3 * n : 0;
   body.q_size = body.layout.q_size();
   body.v_size = body.layout.v_size();
+  body.stability = explicit_stability_limit(body);
   return body;
 }
 

@@ -12,6 +12,7 @@
 #include "deform/body_def.h"
 #include "deform/body_layout.h"
 #include "deform/membrane_stiffness.h"
+#include "deform/stability_limit.h"
 #include "deform/superquadric.h"
 #include "deform/tessellation.h"
 
@@ -65,6 +66,7 @@ struct BodyModel {
   Vec3 color{0.8, 0.3, 0.3};
   Real roughness = 0.5;          // renderer
   BodyLayout layout;             // the blocks of its slices (deform/body_layout.h)
+  StabilityLimit stability;      // its explicit step's limit (deform/stability_limit.h)
   int q_offset = 0, q_size = 0;  // slice of State::q
   int v_offset = 0, v_size = 0;  // slice of State::v
   int n_nodes() const { return static_cast<int>(node_mass.size()); }

@@ -1,5 +1,7 @@
 #include "sim/model.h"
 
+#include <cstdio>
+
 #include "core/error.h"
 
 namespace pbm {
@@ -32,6 +34,35 @@ TrackModel build_track(const Scene& scene, int t) {
     throw Error(scene.file, "tracks[" + std::to_string(t) + "].keys",
                 "needs at least one keyframe");
   return track;
+}
+
+// Shortens the substep below every body's explicit stability limit for the configured
+// integrator (sec. 6.1; deform/stability_limit.h), with 10% to spare, and says so in the notes:
+// a step past the limit grows the fastest membrane mode by a factor every step, an explosion the
+// stability guard sees only once it is large. rk45 adapts its own steps and needs no limit.
+void limit_substep(Model& model) {
+  model.substep = model.solver.dt;
+  if (model.solver.integrator == IntegratorKind::rk45) return;
+  constexpr Real kSafety = 0.9;
+  const BodyModel* limiting = nullptr;
+  Real limit = model.solver.dt;
+  for (const BodyModel& body : model.bodies) {
+    const Real stable = model.solver.integrator == IntegratorKind::euler ? body.stability.dt_euler
+                                                                         : body.stability.dt_rk4;
+    if (kSafety * stable < limit) {
+      limit = kSafety * stable;
+      limiting = &body;
+    }
+  }
+  if (limiting == nullptr) return;
+  model.substep = limit;
+  char note[320];
+  std::snprintf(note, sizeof note,
+                "body '%s': solver.dt %g s is past its explicit stability limit %.3g s (fastest "
+                "membrane mode %.4g rad/s, damping %g 1/s); substeps shortened to %.3g s",
+                limiting->name.c_str(), model.solver.dt, limit / kSafety, limiting->stability.omega,
+                limiting->damping, limit);
+  model.notes += (model.notes.empty() ? "" : "; ") + std::string(note);
 }
 
 }  // namespace
@@ -105,6 +136,7 @@ Model build_model(const Scene& scene) {
   for (const std::string& note : model.constraints.notes) {
     model.notes += (model.notes.empty() ? "" : "; ") + note;
   }
+  limit_substep(model);
   model.body_collisions.constrained.assign(model.bodies.size(), 0);
   for (const PointConstraintModel& c : model.constraints.points) {
     const int a = c.ends[0].body, b = c.ends[1].body;

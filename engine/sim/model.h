@@ -41,6 +41,10 @@ struct Model {
   ConstraintSystemModel constraints;   // ch. 7
   BodyCollisionModel body_collisions;  // 5.2.2, from the solver's keys and the constraints
   int n_q = 0, n_v = 0;
+  // The longest substep advance_frame may take [s]: solver.dt, or shorter where a body's explicit
+  // stability limit (deform/stability_limit.h) with the configured integrator needs it (the
+  // shortening is one of the notes). rk45 chooses its own steps inside each substep.
+  Real substep = 0;
   // Warnings about the solvers for every frame's stats, '; '-separated (constraints.notes).
   std::string notes;
   SnapshotGeometry snapshot_geometry;  // shared by every snapshot (sim/snapshot.h), drawing only

@@ -58,8 +58,8 @@ MouseSpringParameters mouse_spring_parameters(const Model& model, int body) {
   const BodyModel& b = model.bodies[body];
   const Real m_body = b.mass;
   const Real m_node = b.node_mass.minCoeff();
-  const Real nu = b.damping;  // D = nu M (sec. 6.1) [1/s]
-  const Real dt = model.solver.dt;
+  const Real nu = b.damping;      // D = nu M (sec. 6.1) [1/s]
+  const Real dt = model.substep;  // the longest substep the step takes
   const Real g = model.gravity.norm() > 0 ? model.gravity.norm() : 9.81;
   MouseSpringParameters p;
   // The body on the spring, m x'' + nu m x' + k x = k x_target, should follow a hand within

@@ -207,7 +207,7 @@ FrameResult advance_frame(const World& world, const Inputs& inputs, State& state
   const Real frame_dt = 1.0 / model.solver.fps;
   const Real t_end = (std::round(state.time * model.solver.fps) + 1.0) / model.solver.fps;
   const int base_substeps =
-      std::max(1, static_cast<int>(std::ceil(frame_dt / model.solver.dt - 1e-9)));
+      std::max(1, static_cast<int>(std::ceil(frame_dt / model.substep - 1e-9)));
   FrameStats& before = ws.before;
   const Workspace::Measured& last = ws.last_measured;
   if (last.valid && last.time == state.time && same_bits(last.q, state.q) &&

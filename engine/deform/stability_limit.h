@@ -1,0 +1,29 @@
+// The explicit step's stability limit of a body (sec. 6.1): the fastest mode of its local
+// displacements, omega_max^2 = the largest eigenvalue of M^-1 K_dd (lumped nodal masses, the
+// membrane's element matrices of (4.38)), found by power iteration without assembling K_dd. The
+// book's Euler (6.1) integrates a mode of frequency omega with damping nu (D = nu M) stably while
+// dt lambda < 2, lambda = nu / 2 + sqrt(nu^2 / 4 + omega^2) (the undamped oscillator's
+// omega dt < 2 and the pure damper's nu dt < 2 are its ends); classic RK4 while dt lambda < 2.78
+// (its stability boundary on the imaginary axis is 2 sqrt 2). A first-order body (3.51) decays
+// its mode at lambda = omega^2 / nu, under the same bounds. The global block needs no limit:
+// its parameter inertia floor k_s dt^2 keeps omega_s dt < 1 at any dt (deform/body_model.h).
+#pragma once
+
+#include "core/types.h"
+
+namespace pbm {
+
+struct BodyModel;
+
+struct StabilityLimit {
+  Real omega = 0;   // fastest membrane mode [rad/s]; 0 without local displacements
+  Real lambda = 0;  // nu / 2 + sqrt(nu^2 / 4 + omega^2), first order omega^2 / nu [1/s]
+  // Largest stable step of the book's Euler and of RK4 [s] (infinite when nothing limits it).
+  Real dt_euler = 0, dt_rk4 = 0;
+};
+
+// Power iteration on M^-1 K_dd: `iterations` products, started from an alternating pattern that
+// excites the mesh's shortest wavelengths (deterministic: the limit is part of the model).
+StabilityLimit explicit_stability_limit(const BodyModel& body, int iterations = 60);
+
+}  // namespace pbm
