@@ -1,5 +1,7 @@
 #include "sim/model.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "core/error.h"
@@ -44,8 +46,11 @@ void limit_substep(Model& model) {
   model.substep = model.solver.dt;
   if (model.solver.integrator == IntegratorKind::rk45) return;
   constexpr Real kSafety = 0.9;
+  // The substep the frames take at solver.dt: a frame is divided into equal substeps.
+  const Real frame = 1.0 / model.solver.fps;
+  const Real taken = frame / std::max(1.0, std::ceil(frame / model.solver.dt - 1e-9));
   const BodyModel* limiting = nullptr;
-  Real limit = model.solver.dt;
+  Real limit = taken;
   for (const BodyModel& body : model.bodies) {
     const Real stable = model.solver.integrator == IntegratorKind::euler ? body.stability.dt_euler
                                                                          : body.stability.dt_rk4;

@@ -1,0 +1,263 @@
+// Stability at the extremes (issue 12): a matrix of scenes at the ends of every knob, each read
+// through the scene format like a user's file and run for its frames. Each cell ends in one of
+//   ran      every frame computed at the scene's settings;
+//   refined  every frame computed, with the substep shortened to a body's stability limit or
+//            frames retried by the guard;
+//   refused  the file refused with the field named (exit 2), or the run stopped with the body and
+//            the quantity named (exit 1);
+// and never in a crash, a hang or a NaN frame. The outcome of every cell is committed in
+// docs/extremes.md; `tools/extremes-table` regenerates that table from this test.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "constraint_scenes.h"
+#include "core/error.h"
+#include "scene/json_reader.h"
+#include "scene/scene_json.h"
+#include "scene_builders.h"
+#include "sim/simulation.h"
+
+namespace pbm {
+namespace {
+
+using test::constraints::body_point;
+using test::constraints::joint;
+using test::constraints::part;
+using test::constraints::world;
+
+struct Cell {
+  std::string name;
+  std::function<Scene()> make;
+  int frames = 30;
+};
+
+// A local ball (8 x 8, 10 kg, radius 1) dropped from 1 m onto the ground: the base of most cells.
+Scene ball_on_ground() {
+  BodyDef b = test::ball(DeformLevel::local, 8);
+  b.position = Vec3(0, 0, 2);
+  b.material.damping = 1;
+  Scene s;
+  s.name = "extreme";
+  s.solver.dt = 1e-3;
+  s.bodies = {b};
+  ObstacleDef ground;
+  ground.name = "ground";
+  s.obstacles = {ground};
+  return s;
+}
+
+Scene with(std::function<void(Scene&)> change) {
+  Scene s = ball_on_ground();
+  change(s);
+  return s;
+}
+
+std::vector<Cell> cells() {
+  std::vector<Cell> c;
+  for (Real w : {1e-6, 1e6}) {
+    c.push_back({"membrane w0 = w1 = " + format_real(w), [w] {
+                   return with(
+                       [w](Scene& s) { s.bodies[0].material.w0 = s.bodies[0].material.w1 = w; });
+                 }});
+  }
+  for (Real k : {1e-6, 1e6}) {
+    c.push_back({"global stiffness k_s = " + format_real(k),
+                 [k] { return with([k](Scene& s) { s.bodies[0].k_s.setConstant(k); }); }});
+  }
+  // Frames of 0.5 s, so that the substep is solver.dt's own and not the frame's.
+  c.push_back({"dt at the Euler limit",
+               [] {
+                 Scene s = ball_on_ground();
+                 s.solver.fps = 2;
+                 s.solver.dt = Simulation(s).model.bodies[0].stability.dt_euler;
+                 return s;
+               },
+               4});
+  c.push_back({"dt 0.8 of the Euler limit",
+               [] {
+                 Scene s = ball_on_ground();
+                 s.solver.fps = 2;
+                 s.solver.dt = 0.8 * Simulation(s).model.bodies[0].stability.dt_euler;
+                 return s;
+               },
+               4});
+  c.push_back({"dt 10x past the Euler limit, max_retries 0",
+               [] {
+                 Scene s = ball_on_ground();
+                 s.solver.fps = 2;
+                 s.solver.dt = 10 * Simulation(s).model.bodies[0].stability.dt_euler;
+                 s.solver.max_retries = 0;
+                 return s;
+               },
+               4});
+  for (Real mass : {1e-6, 1e6}) {
+    c.push_back({"body mass " + format_real(mass) + " kg",
+                 [mass] { return with([mass](Scene& s) { s.bodies[0].material.mass = mass; }); }});
+  }
+  for (Real eps : {0.1, 4.0}) {
+    c.push_back({"squareness eps1 = eps2 = " + format_real(eps), [eps] {
+                   return with([eps](Scene& s) {
+                     s.bodies[0].q_s[4] = s.bodies[0].q_s[5] = eps;
+                     s.bodies[0].q_s0 = s.bodies[0].q_s;
+                   });
+                 }});
+  }
+  for (Real taper : {-1.0, 1.0}) {
+    c.push_back({"taper t1 = t2 = " + format_real(taper), [taper] {
+                   return with([taper](Scene& s) {
+                     BodyDef& b = s.bodies[0];
+                     b.shape = ShapeKind::taper_bend;
+                     b.q_s = default_shape_parameters(b.shape);
+                     b.q_s[6] = b.q_s[7] = taper;
+                     b.q_s0 = b.q_s;
+                     b.k_s = VecX::Constant(b.q_s.size(), 2000.0);
+                   });
+                 }});
+  }
+  for (DeformLevel level : {DeformLevel::rigid, DeformLevel::global, DeformLevel::local}) {
+    const char* names[] = {"rigid", "global", "local"};
+    c.push_back(
+        {std::string("10 m/s impact, ") + names[static_cast<int>(level)] + " ball", [level] {
+           return with([level](Scene& s) {
+             s.bodies[0].level = level;
+             s.bodies[0].velocity = Vec3(0, 0, -10);
+           });
+         }});
+  }
+  c.push_back({"mass ratio 1:1e4, 1e4 kg ball dropped on a 1 kg ball", [] {
+                 return with([](Scene& s) {
+                   BodyDef heavy = s.bodies[0];
+                   heavy.name = "heavy";
+                   heavy.position = Vec3(0, 0, 4.2);
+                   heavy.material.mass = 1e4;
+                   s.bodies[0].material.mass = 1;
+                   s.bodies[0].position = Vec3(0, 0, 1.05);
+                   s.bodies.push_back(heavy);
+                 });
+               }});
+  // The constraint solver at its size limit; the links' collisions with their neighbours'
+  // neighbours are left out (they would time the body-collision stage instead).
+  c.push_back({"1000 constraints, a chain of rigid links",
+               [] {
+                 Scene s;
+                 s.solver.body_collisions = false;
+                 s.solver.dt = 1e-3;
+                 s.solver.fps = 50;
+                 s.solver.constraint_solver = ConstraintSolverKind::sparse;
+                 const Real link = 0.01;
+                 for (int i = 0; i < 1000; ++i) {
+                   BodyDef b = part("link" + std::to_string(i), DeformLevel::rigid,
+                                    Vec3((i + 0.5) * link, 0, 0), 0.004);
+                   b.tessellation.rings = 2;
+                   b.tessellation.segments = 3;
+                   b.material.mass = 0.01;
+                   s.bodies.push_back(b);
+                 }
+                 s.constraints.push_back(
+                     joint(body_point(0, Vec3(-0.5 * link, 0, 0)), world(Vec3::Zero())));
+                 for (int i = 0; i + 1 < 1000; ++i) {
+                   s.constraints.push_back(joint(body_point(i, Vec3(0.5 * link, 0, 0)),
+                                                 body_point(i + 1, Vec3(-0.5 * link, 0, 0))));
+                 }
+                 return s;
+               },
+               10});
+  return c;
+}
+
+struct Outcome {
+  std::string kind;    // ran, refined, refused; anything else fails the test
+  std::string detail;  // the message, or what the guard and the limit did
+};
+
+Outcome run(const Cell& cell) {
+  std::unique_ptr<Simulation> sim;
+  try {
+    // Through the file format, as a user's scene comes in.
+    const Scene scene = parse_scene(scene_to_json(cell.make()), cell.name + ".json");
+    sim = std::make_unique<Simulation>(scene);
+  } catch (const Error& e) {
+    return {"refused", e.what()};
+  }
+  int retries = 0;
+  for (int f = 0; f < cell.frames; ++f) {
+    const FrameResult r = advance_frame(*sim);
+    if (!sim->state.q.allFinite() || !sim->state.v.allFinite()) {
+      return {"NaN", "frame " + std::to_string(f + 1)};
+    }
+    if (!r.ok) return {"refused", "frame " + std::to_string(f + 1) + ": " + r.message};
+    retries += sim->stats.retries;
+  }
+  const bool shortened = sim->model.substep < sim->model.solver.dt;
+  if (retries == 0 && !shortened) return {"ran", ""};
+  std::ostringstream detail;
+  if (shortened) {
+    char text[64];
+    std::snprintf(text, sizeof text, "substep %.3g s (solver.dt %.3g s); ", sim->model.substep,
+                  sim->model.solver.dt);
+    detail << text;
+  }
+  detail << retries << " retries";
+  return {"refined", detail.str()};
+}
+
+// The committed outcomes: "| cell | outcome | detail |" rows of docs/extremes.md.
+std::vector<std::pair<std::string, std::string>> committed_outcomes() {
+  std::ifstream file(PBM_SOURCE_DIR "/docs/extremes.md");
+  std::vector<std::pair<std::string, std::string>> rows;
+  std::string line;
+  while (std::getline(file, line)) {
+    if (!line.starts_with("| ") || line.starts_with("| cell") || line.starts_with("|--")) continue;
+    std::vector<std::string> cols;
+    std::stringstream ss(line.substr(2));
+    std::string col;
+    while (std::getline(ss, col, '|')) {
+      while (!col.empty() && col.back() == ' ') col.pop_back();
+      while (!col.empty() && col.front() == ' ') col.erase(col.begin());
+      cols.push_back(col);
+    }
+    if (cols.size() >= 2) rows.emplace_back(cols[0], cols[1]);
+  }
+  return rows;
+}
+
+TEST(Extremes, EveryCellRunsRefinesOrRefusesAsCommitted) {
+  const std::vector<Cell> all = cells();
+  const auto committed = committed_outcomes();
+  std::ostringstream table;
+  table << "| cell | outcome | detail |\n|---|---|---|\n";
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const Outcome o = run(all[i]);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::string detail = o.detail;
+    for (char& ch : detail) {
+      if (ch == '|' || ch == '\n') ch = ' ';
+    }
+    table << "| " << all[i].name << " | " << o.kind << " | " << detail << " |\n";
+    std::printf("%-55s %-8s %5.2f s  %s\n", all[i].name.c_str(), o.kind.c_str(), seconds,
+                detail.c_str());
+    EXPECT_TRUE(o.kind == "ran" || o.kind == "refined" || o.kind == "refused")
+        << all[i].name << ": " << o.kind << " " << o.detail;
+    if (i < committed.size()) {
+      EXPECT_EQ(committed[i].first, all[i].name) << "docs/extremes.md: regenerate it";
+      EXPECT_EQ(committed[i].second, o.kind)
+          << all[i].name << " (docs/extremes.md says " << committed[i].second << "; run "
+          << "tools/extremes-table if the change is meant)";
+    }
+  }
+  EXPECT_EQ(committed.size(), all.size()) << "docs/extremes.md: regenerate it";
+  if (const char* out = std::getenv("PBM_EXTREMES_TABLE")) std::ofstream(out) << table.str();
+}
+
+}  // namespace
+}  // namespace pbm
