@@ -1,0 +1,83 @@
+// Convergence of the whole body dynamics under substep halving (issue 12): a spinning, deforming
+// ball in free space (no contact, so the rates are smooth) run to 0.5 s in substeps of h, h/2,
+// h/4, h/8 against a run at h/64, the model compiled once at solver.dt = h (its parameter
+// inertia floor k_s dt^2 depends on solver.dt, so a run at another solver.dt is another model).
+// The error of the nodes' world positions shrinks at the integrator's order, 1 for the book's
+// Euler (6.1) and 4 for RK4, for rigid and global bodies. A local body converges at order 1
+// with RK4 as well: its rates assume the mean-axis split (deform/body_dynamics.h) that the
+// substep restores only between steps, so RK4's inner stages see a first-order error. That is
+// asserted as it is (order >= 0.6), a known gap of issue 12.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "deform/body_dynamics.h"
+#include "scene_builders.h"
+#include "sim/simulation.h"
+
+namespace pbm {
+namespace {
+
+Scene spinning_ball(DeformLevel level, IntegratorKind integrator, Real dt) {
+  BodyDef b = test::ball(level, 8);
+  b.material.damping = 0.5;
+  b.angular_velocity = Vec3(0.3, 1.0, 2.0);
+  b.velocity = Vec3(0.5, 0, 0);
+  b.q_s[1] = 1.2;  // released from an ellipsoid toward its sphere at rest
+  Scene s = test::free_space(b);
+  s.solver.integrator = integrator;
+  s.solver.fps = 10;
+  s.solver.dt = dt;
+  return s;
+}
+
+// World positions of every node at t_end (the physical state: q_s and q_d share the shape, so
+// two runs may hold one surface in different coordinates), the model compiled at solver.dt = h
+// and integrated in substeps of dt: the same equations at every dt.
+VecX x_at(DeformLevel level, IntegratorKind integrator, Real h, Real dt, Real t_end) {
+  Simulation sim(spinning_ball(level, integrator, h));
+  int evaluations = 0;
+  const int steps = static_cast<int>(std::lround(t_end / dt));
+  for (int k = 0; k < steps; ++k) {
+    EXPECT_TRUE(advance_substep(sim.world, sim.inputs, sim.state, dt, sim.ws, evaluations));
+  }
+  const BodyModel& body = sim.model.bodies[0];
+  BodyWorkspace& bw = sim.ws.bodies[0];
+  compute_body_kinematics(body, body_q(body, sim.state.q), body_v(body, sim.state.v), bw, false);
+  VecX x(3 * body.n_nodes());
+  for (int i = 0; i < body.n_nodes(); ++i) x.segment<3>(3 * i) = bw.x[i];
+  return x;
+}
+
+TEST(Convergence, BodyDynamicsConvergeAtTheIntegratorsOrder) {
+  const Real h = 0.01, t_end = 0.5;
+  for (DeformLevel level : {DeformLevel::rigid, DeformLevel::global, DeformLevel::local})
+    for (const auto& [kind, name, order] :
+         {std::tuple{IntegratorKind::euler, "euler", 1.0}, {IntegratorKind::rk4, "rk4", 4.0}}) {
+      const VecX reference = x_at(level, kind, h, h / 64, t_end);
+      Real previous = 0;
+      for (int k = 0; k < 4; ++k) {
+        const Real dt = h / (1 << k);
+        const Real error = (x_at(level, kind, h, dt, t_end) - reference).norm();
+        if (previous > 0) {
+          const Real measured = std::log2(previous / error);
+          std::printf("level %d %s: dt %.5f s, |x - x_ref| %.3e, order %.2f\n",
+                      static_cast<int>(level), name, dt, error, measured);
+          if (level == DeformLevel::local && kind == IntegratorKind::rk4) {
+            EXPECT_GT(measured, 0.6) << name << " at dt " << dt;
+          } else {
+            // The last halving of RK4 on a rigid body reaches round-off (2e-13 m).
+            EXPECT_NEAR(measured, order, error < 1e-12 ? 0.6 : 0.25) << name << " at dt " << dt;
+          }
+        } else {
+          std::printf("level %d %s: dt %.5f s, |x - x_ref| %.3e\n", static_cast<int>(level), name,
+                      dt, error);
+        }
+        previous = error;
+      }
+    }
+}
+
+}  // namespace
+}  // namespace pbm
