@@ -16,6 +16,7 @@
 #include <functional>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "constraint_scenes.h"
@@ -72,32 +73,22 @@ std::vector<Cell> cells() {
     c.push_back({"global stiffness k_s = " + format_real(k),
                  [k] { return with([k](Scene& s) { s.bodies[0].k_s.setConstant(k); }); }});
   }
-  // Frames of 0.5 s, so that the substep is solver.dt's own and not the frame's.
-  c.push_back({"dt at the Euler limit",
-               [] {
-                 Scene s = ball_on_ground();
-                 s.solver.fps = 2;
-                 s.solver.dt = Simulation(s).model.bodies[0].stability.dt_euler;
-                 return s;
-               },
-               4});
-  c.push_back({"dt 0.8 of the Euler limit",
-               [] {
-                 Scene s = ball_on_ground();
-                 s.solver.fps = 2;
-                 s.solver.dt = 0.8 * Simulation(s).model.bodies[0].stability.dt_euler;
-                 return s;
-               },
-               4});
-  c.push_back({"dt 10x past the Euler limit, max_retries 0",
-               [] {
-                 Scene s = ball_on_ground();
-                 s.solver.fps = 2;
-                 s.solver.dt = 10 * Simulation(s).model.bodies[0].stability.dt_euler;
-                 s.solver.max_retries = 0;
-                 return s;
-               },
-               4});
+  // solver.dt as a multiple of the ball's Euler limit (max_retries < 0: the default), in frames
+  // of 0.5 s so that the substep is solver.dt's own and not the frame's.
+  for (const auto& [name, factor, max_retries] :
+       {std::tuple{"dt at the Euler limit", 1.0, -1},
+        {"dt 0.8 of the Euler limit", 0.8, -1},
+        {"dt 10x past the Euler limit, max_retries 0", 10.0, 0}}) {
+    c.push_back({name,
+                 [factor, max_retries] {
+                   Scene s = ball_on_ground();
+                   s.solver.fps = 2;
+                   s.solver.dt = factor * Simulation(s).model.bodies[0].stability.dt_euler;
+                   if (max_retries >= 0) s.solver.max_retries = max_retries;
+                   return s;
+                 },
+                 4});
+  }
   for (Real mass : {1e-6, 1e6}) {
     c.push_back({"body mass " + format_real(mass) + " kg",
                  [mass] { return with([mass](Scene& s) { s.bodies[0].material.mass = mass; }); }});
