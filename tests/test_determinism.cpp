@@ -84,14 +84,25 @@ TEST_P(Determinism, FreshAndReusedWorkspacesGiveTheSameBits) {
 
 // The runner with a cache too small to keep frames (only frame 0 and the newest): every seek
 // re-simulates, from frame 0 or from where it stands, and lands on the bits of the first visit.
+// Whether the runner's timeline holds `frame` (then a seek restores it instead of computing it).
+bool cached(const RunnerCore& core, int frame) {
+  for (const auto& [first, last] : core.timeline().ranges()) {
+    if (first <= frame && frame <= last) return true;
+  }
+  return false;
+}
+
 TEST_P(Determinism, SeekAndResimulateInTheRunnerGivesTheSameBits) {
   RunnerCore core(scene_for(GetParam()), 1);
   ASSERT_EQ(core.apply(Seek{40}), "");
   const std::uint64_t first = hash_state(core.state());
+  ASSERT_FALSE(cached(core, 25));  // the seek below computes it
   ASSERT_EQ(core.apply(Seek{25}), "");
   const std::uint64_t at_25 = hash_state(core.state());
+  ASSERT_FALSE(cached(core, 40));
   ASSERT_EQ(core.apply(Seek{40}), "");
   EXPECT_EQ(hash_state(core.state()), first);
+  ASSERT_FALSE(cached(core, 25));
   ASSERT_EQ(core.apply(Seek{25}), "");
   EXPECT_EQ(hash_state(core.state()), at_25);
   EXPECT_EQ(core.message(), "");

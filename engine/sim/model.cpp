@@ -63,10 +63,11 @@ void limit_substep(Model& model) {
   model.substep = limit;
   char note[320];
   std::snprintf(note, sizeof note,
-                "body '%s': solver.dt %g s is past its explicit stability limit %.3g s (fastest "
-                "membrane mode %.4g rad/s, damping %g 1/s); substeps shortened to %.3g s",
-                limiting->name.c_str(), model.solver.dt, limit / kSafety, limiting->stability.omega,
-                limiting->damping, limit);
+                "body '%s': the substep %.3g s (solver.dt %g s) is past its explicit stability "
+                "limit %.3g s (fastest membrane mode %.4g rad/s, damping %g 1/s); substeps "
+                "shortened to %.3g s",
+                limiting->name.c_str(), taken, model.solver.dt, limit / kSafety,
+                limiting->stability.omega, limiting->damping, limit);
   model.notes += (model.notes.empty() ? "" : "; ") + std::string(note);
 }
 

@@ -1,5 +1,5 @@
-// State: minimal restartable plain data (docs/architecture.md, "Determinism"). Layout described
-// in sim/model.h.
+// State: minimal restartable plain data (docs/architecture.md, "Determinism"). Each body owns the
+// slices at BodyModel::q_offset / v_offset, its blocks named in deform/body_layout.h.
 #pragma once
 
 #include <cstdint>
