@@ -14,6 +14,9 @@ int main(int argc, char** argv) {
   auto* validate =
       app.add_subcommand("validate", "check a scene file (exit 2 with the field path)");
   validate->add_option("scene", validate_scene, "scene JSON file")->required();
+  bool validate_materials = false;
+  validate->add_flag("--materials", validate_materials,
+                     "print each body's mass, area, contact stiffness per area and step limit");
 
   pbm::SimulateOptions sim;
   auto* simulate = app.add_subcommand("simulate", "simulate a scene and write states/stats/meshes");
@@ -60,7 +63,7 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : 2;
   }
   spdlog::set_pattern("%^%l%$: %v");
-  if (*validate) return pbm::run_validate(validate_scene);
+  if (*validate) return pbm::run_validate(validate_scene, validate_materials);
   if (*simulate) return pbm::run_simulate(sim);
   if (*render_cmd) return pbm::run_render(render);
   if (*bench_cmd) return pbm::run_bench(bench);

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -65,7 +66,7 @@ void apply_overrides(const SimulateOptions& o, Scene& scene) {
 
 }  // namespace
 
-int run_validate(const std::string& scene_path) {
+int run_validate(const std::string& scene_path, bool materials) {
   try {
     const Scene scene = load_scene(scene_path);
     const Model model = build_model(scene);
@@ -73,6 +74,19 @@ int run_validate(const std::string& scene_path) {
     for (const BodyModel& b : model.bodies) nodes += b.n_nodes();
     spdlog::info("{}: valid ({} bodies, {} nodes, {} obstacles, {} tracks)", scene_path,
                  model.bodies.size(), nodes, model.obstacles.size(), model.tracks.size());
+    if (materials) {
+      std::printf("%-16s %7s %12s %10s %12s %18s %18s %12s\n", "body", "nodes", "mass_kg",
+                  "area_m2", "kg_per_m2", "contact_N_per_m3", "book_N_per_m3", "dt_euler_s");
+      for (const BodyModel& b : model.bodies) {
+        const Real in_use = b.contact_samples.empty() ? 0.0
+                            : b.contact_from_material
+                                ? scene.bodies[&b - model.bodies.data()].material.contact_stiffness
+                                : b.book_contact_stiffness;
+        std::printf("%-16s %7d %12.6g %10.6g %12.6g %18.6g %18.6g %12.4g\n", b.name.c_str(),
+                    b.n_nodes(), b.mass, b.surface_area, b.mass / b.surface_area, in_use,
+                    b.book_contact_stiffness, b.stability.dt_euler);
+      }
+    }
     return 0;
   } catch (const Error& e) {
     spdlog::error("{}", e.what());

@@ -21,7 +21,9 @@ struct SimulateOptions {
 
 // Exit codes: 0 ok, 1 simulation failed, 2 bad input (docs/architecture.md, "Errors and exit
 // codes").
-int run_validate(const std::string& scene_path);
+// With `materials`, each body's compiled material is printed: what converting a book scene's
+// per-node numbers to mesh-independent ones needs (scenes/README.md, "Materials that converge").
+int run_validate(const std::string& scene_path, bool materials = false);
 int run_simulate(const SimulateOptions& options);
 
 }  // namespace pbm

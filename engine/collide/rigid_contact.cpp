@@ -300,10 +300,18 @@ int add_contact_forces(Obstacles obstacles, const BodyModel& body, BodyWorkspace
     // projection and the membrane keep changing) pumps energy in at every step of a rest. A
     // spring stiffer than the step resolves is clamped to omega dt = 1.
     Real stiffness = obs.elasticity * sample.stiffness;
-    if (rate > 0) stiffness = std::min(stiffness, mass_n * rate * rate);
-    Real f_normal = stiffness * (-point.phi);
     // Kelvin-Voigt dashpot on the surface point's approach: an inelastic contact, so the book's
-    // balls come to rest. It never pulls: the total is >= 0.
+    // balls come to rest. With the book's stiffness it is sized on the step, c = m / (2 dt);
+    // with a material's contact stiffness (per area, mesh-independent) it is a damping ratio of
+    // the spring, c = 2 zeta sqrt(k m) with zeta = 1/4, the same where the spring is clamped, so
+    // that halving the step approaches one answer (docs/architecture.md, "Knobs that converge").
+    Real damping = kContactDamping * mass_n * rate;
+    if (rate > 0 && stiffness > mass_n * rate * rate) {
+      stiffness = mass_n * rate * rate;
+    } else if (body.contact_from_material) {
+      damping = kContactDamping * std::sqrt(stiffness * mass_n);
+    }
+    Real f_normal = stiffness * (-point.phi);
     Vec3 s_dot = Vec3::Zero();  // J_s q_s-dot
     for (int c_k = 0; c_k < 3; ++c_k) {
       const int i = sample.nodes[c_k];
@@ -312,7 +320,7 @@ int add_contact_forces(Obstacles obstacles, const BodyModel& body, BodyWorkspace
     // Relative to the obstacle's material at the point (5.11 and 5.12 against a moving one).
     const Vec3 v_point =
         ws.R * (V + ws.omega.cross(point.s) + s_dot) - obs.velocity_at(c + ws.R * point.s);
-    f_normal -= kContactDamping * mass_n * rate * v_point.dot(point.n);
+    f_normal -= damping * v_point.dot(point.n);  // it never pulls: the total is >= 0
     f_normal = std::max(0.0, f_normal);
     magnitude[p] = f_normal;
     const Vec3 v_p = v_point - v_point.dot(point.n) * point.n;

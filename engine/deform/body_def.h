@@ -27,10 +27,18 @@ struct TessellationDef {
 };
 
 struct MaterialDef {
-  Real w0 = 20.0;             // membrane magnitude stiffness w00 (3.34), >= 0
-  Real w1 = 15.0;             // membrane variation stiffness w10 = w01 (3.34), >= 0
-  Real nodal_mass = 0;        // lumped mass per node [kg]; exactly one of nodal_mass, mass is > 0
-  Real mass = 0;              // total mass [kg], spread by lumping (sec. 6.1)
+  Real w0 = 20.0;  // membrane magnitude stiffness w00 (3.34), >= 0
+  Real w1 = 15.0;  // membrane variation stiffness w10 = w01 (3.34), >= 0
+  // Exactly one of nodal_mass, mass, density is > 0. nodal_mass is the book's (sec. 6.1): the
+  // body's mass grows with its node count. mass and density do not depend on the mesh: each node
+  // carries the mass of its share of the initial surface (a third of its triangles' areas).
+  Real nodal_mass = 0;  // lumped mass per node [kg]
+  Real mass = 0;        // total mass [kg], spread over the nodes by area
+  Real density = 0;     // areal density [kg/m^2] of the initial surface, spread by area
+  // Contact stiffness per unit area [N/m^3], multiplied by the obstacle's elasticity: refining
+  // the mesh keeps the pressure of a dent. 0: the book's (5.10)-(5.11), the nodes' K_ii per area,
+  // which grows with the node count.
+  Real contact_stiffness = 0;
   Real damping = 1.4;         // nu in D = nu M (sec. 6.1) [1/s], >= 0
   Vec3 color{0.8, 0.3, 0.3};  // base colour for the renderer, components in [0, 1]
   Real roughness = 0.5;       // renderer: 0 = mirror-like highlight, 1 = matte

@@ -18,7 +18,7 @@ namespace {
 // enough in a contact patch that a resting ball's depth would change as one enters or leaves.
 // The points lie on the exact surface s(u, v): on the flat triangles, the equator's larger
 // chords would sit deeper than the poles' and a ball would roll toward its deepest orientation.
-void build_contact_samples(BodyModel& body) {
+void build_contact_samples(BodyModel& body, Real contact_stiffness) {
   const Tessellation& t = body.tessellation;
   body.contact_samples.clear();
   body.contact_samples.reserve(kContactSamplesPerTriangle * t.triangles.size());
@@ -74,9 +74,38 @@ void build_contact_samples(BodyModel& body) {
     }
     body.contact_triangle_reach.push_back(reach);
   }
-  const Real per_area = membrane_stiffness_diagonal(t, body.stiffness).sum() / total_area;
+  body.book_contact_stiffness = membrane_stiffness_diagonal(t, body.stiffness).sum() / total_area;
+  const Real per_area = contact_stiffness > 0 ? contact_stiffness : body.book_contact_stiffness;
   for (ContactSample& sample : body.contact_samples) sample.stiffness *= per_area;
   body.contact_sample_gap = gap;
+}
+
+// Lumped node masses (sec. 6.1). The book gives one mass per node; a total mass or an areal
+// density is spread by each node's share of the initial surface, a third of the areas of its
+// triangles, so that refining the mesh approaches one continuum (docs/architecture.md, "Knobs
+// that converge") instead of adding mass.
+void distribute_mass(const MaterialDef& material, const std::string& file, const std::string& path,
+                     BodyModel& body) {
+  const int n = body.tessellation.node_count();
+  VecX area = VecX::Zero(n);
+  for (const std::array<int, 3>& tri : body.tessellation.triangles) {
+    const Vec3& p0 = body.s_fixed[tri[0]];
+    const Real a = 0.5 * (body.s_fixed[tri[1]] - p0).cross(body.s_fixed[tri[2]] - p0).norm() / 3.0;
+    for (int k = 0; k < 3; ++k) area[tri[k]] += a;
+  }
+  body.surface_area = area.sum();
+  if (material.nodal_mass > 0) {
+    body.node_mass = VecX::Constant(n, material.nodal_mass);
+    body.mass = material.nodal_mass * n;
+  } else {
+    body.node_mass = material.density > 0 ? VecX(material.density * area)
+                                          : VecX((material.mass / body.surface_area) * area);
+    body.mass = body.node_mass.sum();
+  }
+  if (!(body.node_mass.minCoeff() > 0) || !std::isfinite(body.mass)) {
+    throw Error(file, path + ".material",
+                "needs nodal_mass, mass or density > 0 giving every node a finite mass > 0");
+  }
 }
 
 }  // namespace
@@ -93,13 +122,6 @@ BodyModel build_body_model(const BodyDef& def, Real dt, const std::string& file,
   body.has_local = def.level == DeformLevel::local;
   body.tessellation = tessellate(def.tessellation);
   const int n = body.tessellation.node_count();
-  const Real nodal_mass =
-      def.material.nodal_mass > 0 ? def.material.nodal_mass : def.material.mass / n;
-  if (!(nodal_mass > 0) || !std::isfinite(nodal_mass)) {
-    throw Error(file, path + ".material", "needs nodal_mass > 0 or mass > 0");
-  }
-  body.node_mass = VecX::Constant(n, nodal_mass);
-  body.mass = nodal_mass * n;
   body.damping = def.material.damping;
   if (def.order == DynamicsOrder::first && !(body.damping > 0)) {
     throw Error(file, path + ".material.damping",
@@ -136,7 +158,9 @@ BodyModel build_body_model(const BodyDef& def, Real dt, const std::string& file,
     evaluate_reference_shape(def.shape, body.q_s_fixed, body.node_angles[i], 1.0, body.s_fixed[i],
                              nullptr);
   }
-  if (body.has_local) build_contact_samples(body);
+  distribute_mass(def.material, file, path, body);
+  body.contact_from_material = def.material.contact_stiffness > 0;
+  if (body.has_local) build_contact_samples(body, def.material.contact_stiffness);
   // Inertia of the gauge direction n (deform/body_dynamics.h): omega = sqrt(n^T K_ss n / eta)
   // at most 1 / (4 dt), and at least 1% of the mass times a0^2 so it is never negligible.
   // Parameters whose mass vanishes at some shapes (a bend's location and range weigh nothing

@@ -55,12 +55,19 @@ struct BodyModel {
   std::vector<std::array<int, 2>> node_grid;
   MembraneStiffness stiffness;                 // K_dd element matrices, local bodies only
   std::vector<ContactSample> contact_samples;  // local bodies, 3 per surface triangle, in order
+  // The material gives the contact stiffness per area (MaterialDef::contact_stiffness): its
+  // dashpot is then a damping ratio, not sized on the step (collide/rigid_contact.cpp).
+  bool contact_from_material = false;
   Real contact_sample_gap = 0;  // bound on |exact - blended| sample position on the initial shape
   // Per surface triangle: how far its samples lie from its nodes on the initial shape, at most.
   std::vector<Real> contact_triangle_reach;
   std::vector<SuperquadricAngles> sample_grid_u, sample_grid_v;  // distinct sample u and v
   Real w0 = 0, w1 = 0;
-  VecX node_mass;    // lumped mass per node [kg] (sec. 6.1, footnote 2)
+  VecX node_mass;         // lumped mass per node [kg] (sec. 6.1, footnote 2)
+  Real surface_area = 0;  // of the flat triangles on the initial shape [m^2]
+  // The book's contact stiffness per area, sum K_ii / area [N/m^3] (local bodies): what a scene
+  // converted to MaterialDef::contact_stiffness gives to keep its contact at this resolution.
+  Real book_contact_stiffness = 0;
   Real mass = 0;     // sum of node_mass
   Real damping = 0;  // nu, D = nu M
   Vec3 color{0.8, 0.3, 0.3};

@@ -174,29 +174,48 @@ constexpr auto kMaterialFields = std::to_array<Field<MaterialDef>>({
     value<&MaterialDef::w1>({.key = "w1",
                              .range = kNonNegative,
                              .description = "Membrane variation stiffness w10 = w01 (3.34)."}),
-    // Only the given mass is written; a material made in code with neither writes nodal_mass.
+    // Only the given mass is written; a material made in code with none writes nodal_mass.
     {{.key = "mass",
       .type = ValueType::number,
       .unit = "kg",
       .range = kPositive,
       .one_of = 1,
-      .default_note = "none: give mass or nodal_mass",
-      .description = "Total mass, spread over the nodes by lumping (sec. 6.1)."},
+      .default_note = "none: give mass, density or nodal_mass",
+      .description = "Total mass, spread over the nodes by their areas on the initial surface."},
      read_value<&MaterialDef::mass>,
      [](const FieldFormat& f, const MaterialDef& material, OrderedJson& object) {
        if (material.mass > 0) object[f.key] = material.mass;
+     }},
+    {{.key = "density",
+      .type = ValueType::number,
+      .unit = "kg/m^2",
+      .range = kPositive,
+      .one_of = 1,
+      .default_note = "none: give mass, density or nodal_mass",
+      .description = "Areal density of the initial surface, spread over the nodes by their areas."},
+     read_value<&MaterialDef::density>,
+     [](const FieldFormat& f, const MaterialDef& material, OrderedJson& object) {
+       if (material.density > 0 && !(material.mass > 0)) object[f.key] = material.density;
      }},
     {{.key = "nodal_mass",
       .type = ValueType::number,
       .unit = "kg",
       .range = kPositive,
       .one_of = 1,
-      .default_note = "none: give mass or nodal_mass",
-      .description = "Lumped mass of each node."},
+      .default_note = "none: give mass, density or nodal_mass",
+      .description =
+          "Lumped mass of each node (the book's; the body's mass grows with its nodes)."},
      read_value<&MaterialDef::nodal_mass>,
      [](const FieldFormat& f, const MaterialDef& material, OrderedJson& object) {
-       if (!(material.mass > 0)) object[f.key] = material.nodal_mass;
+       if (!(material.mass > 0) && !(material.density > 0)) object[f.key] = material.nodal_mass;
      }},
+    value<&MaterialDef::contact_stiffness>(
+        {.key = "contact_stiffness",
+         .unit = "N/m^3",
+         .range = kNonNegative,
+         .description =
+             "Contact pressure per metre of dent, times the obstacle's elasticity; 0: "
+             "the book's (5.10), the nodes' K_ii per area, which grows with the nodes."}),
     value<&MaterialDef::damping>({.key = "damping",
                                   .unit = "1/s",
                                   .range = kNonNegative,
