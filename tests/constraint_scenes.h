@@ -21,7 +21,7 @@ inline BodyDef part(const std::string& name, DeformLevel level, const Vec3& posi
   b.q_s[0] = a0;
   b.q_s0 = b.q_s;
   b.position = position;
-  b.material.mass = 1.0;
+  test::set_uniform_mass(b, 1.0);
   return b;
 }
 

@@ -88,7 +88,7 @@ BodyDef ball_at(DeformLevel level, const Vec3& position, const Vec3& velocity, R
   BodyDef body = test::ball(level, 8);
   body.position = position;
   body.velocity = velocity;
-  body.material.mass = mass;
+  test::set_uniform_mass(body, mass);
   body.k_s = VecX::Constant(6, 5e4);
   return body;
 }

@@ -91,6 +91,7 @@ namespace {
 TEST(BodyDynamics, LumpedMassSumsToTheBodyMass) {
   for (int resolution : {6, 16}) {
     BodyDef body = test::ball(DeformLevel::local, resolution);
+    body.material.nodal_mass = 0;
     body.material.mass = 7.5;
     const Model model = build_model(test::free_space(body));
     EXPECT_NEAR(model.bodies[0].node_mass.sum(), 7.5, 1e-12);

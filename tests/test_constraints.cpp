@@ -115,7 +115,7 @@ TEST(Constraints, TwoFreeRigidBodiesConserveLinearMomentum) {
   s.bodies[0].velocity = Vec3(1, -0.5, 0.2);
   s.bodies[0].angular_velocity = Vec3(0.3, 2, -1);
   s.bodies[1].velocity = Vec3(-0.2, 0.4, 1);
-  s.bodies[1].material.mass = 3.0;
+  test::set_uniform_mass(s.bodies[1], 3.0);
   Simulation sim(s);
   auto momentum = [&] {
     Vec3 p = Vec3::Zero();
@@ -230,7 +230,7 @@ TEST(Constraints, ThousandLinkChainRunsAndStaysBounded) {
         part("link" + std::to_string(i), DeformLevel::rigid, Vec3((i + 0.5) * link, 0, 0), 0.004);
     b.tessellation.rings = 2;
     b.tessellation.segments = 3;
-    b.material.mass = 0.01;
+    test::set_uniform_mass(b, 0.01);
     s.bodies.push_back(b);
   }
   s.constraints.push_back(joint(body_point(0, Vec3(-0.5 * link, 0, 0)), world(Vec3::Zero())));

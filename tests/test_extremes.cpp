@@ -90,8 +90,9 @@ std::vector<Cell> cells() {
                  4});
   }
   for (Real mass : {1e-6, 1e6}) {
-    c.push_back({"body mass " + format_real(mass) + " kg",
-                 [mass] { return with([mass](Scene& s) { s.bodies[0].material.mass = mass; }); }});
+    c.push_back({"body mass " + format_real(mass) + " kg", [mass] {
+                   return with([mass](Scene& s) { test::set_uniform_mass(s.bodies[0], mass); });
+                 }});
   }
   for (Real eps : {0.1, 4.0}) {
     c.push_back({"squareness eps1 = eps2 = " + format_real(eps), [eps] {
@@ -128,8 +129,8 @@ std::vector<Cell> cells() {
                    BodyDef heavy = s.bodies[0];
                    heavy.name = "heavy";
                    heavy.position = Vec3(0, 0, 4.2);
-                   heavy.material.mass = 1e4;
-                   s.bodies[0].material.mass = 1;
+                   test::set_uniform_mass(heavy, 1e4);
+                   test::set_uniform_mass(s.bodies[0], 1);
                    s.bodies[0].position = Vec3(0, 0, 1.05);
                    s.bodies.push_back(heavy);
                  });
@@ -149,7 +150,7 @@ std::vector<Cell> cells() {
                                     Vec3((i + 0.5) * link, 0, 0), 0.004);
                    b.tessellation.rings = 2;
                    b.tessellation.segments = 3;
-                   b.material.mass = 0.01;
+                   test::set_uniform_mass(b, 0.01);
                    s.bodies.push_back(b);
                  }
                  s.constraints.push_back(

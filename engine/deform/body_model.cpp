@@ -86,6 +86,10 @@ void build_contact_samples(BodyModel& body, Real contact_stiffness) {
 // that converge") instead of adding mass.
 void distribute_mass(const MaterialDef& material, const std::string& file, const std::string& path,
                      BodyModel& body) {
+  const int given = (material.nodal_mass > 0) + (material.mass > 0) + (material.density > 0);
+  if (given != 1) {
+    throw Error(file, path + ".material", "give exactly one of mass, density and nodal_mass > 0");
+  }
   const int n = body.tessellation.node_count();
   VecX area = VecX::Zero(n);
   for (const std::array<int, 3>& tri : body.tessellation.triangles) {
@@ -104,7 +108,7 @@ void distribute_mass(const MaterialDef& material, const std::string& file, const
   }
   if (!(body.node_mass.minCoeff() > 0) || !std::isfinite(body.mass)) {
     throw Error(file, path + ".material",
-                "needs nodal_mass, mass or density > 0 giving every node a finite mass > 0");
+                "mass, density or nodal_mass must give every node a finite mass > 0");
   }
 }
 
