@@ -51,6 +51,8 @@ std::string frame_stats_json(const World& world, const FrameStats& s, long frame
   j["kinetic_energy"] = s.kinetic;
   j["elastic_energy"] = s.elastic;
   j["potential_energy"] = s.potential;
+  j["energy_surplus"] = s.energy_surplus;
+  j["energy_surplus_limit"] = s.energy_limit;
   j["min_obstacle_distance"] =
       model.obstacles.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.min_distance);
   j["contact_nodes"] = s.contacts;

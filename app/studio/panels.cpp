@@ -355,6 +355,9 @@ void stats(Studio& studio) {
   ImGui::Separator();
   ImGui::Text("kinetic %.4g J  elastic %.4g J  potential %.4g J", f.kinetic, f.elastic,
               f.potential);
+  // The run-level guard (docs/architecture.md, "Stability guard"): how near the run is to it.
+  ImGui::Text("energy beyond the inputs' work %.4g J of %.4g J allowed", f.energy_surplus,
+              f.energy_limit);
   if (f.min_distance > 1e299) {
     ImGui::Text("no obstacles, %d contacts", f.contacts);
   } else {

@@ -35,4 +35,34 @@ void compute_nodal_loads(const BodyModel& body, int b, std::span<const ForceFiel
   }
 }
 
+Real nodal_load_potential(const BodyModel& body, int b, std::span<const ForceFieldDef> fields,
+                          std::span<const SpringModel> springs, const NodalLoadDrive& drive, Real t,
+                          const BodyWorkspace& bw) {
+  Vec3 acceleration = Vec3::Zero();
+  Vec3 per_node = Vec3::Zero();
+  for (const ForceFieldDef& field : fields) {
+    bool applies = field.bodies.empty();
+    for (int target : field.bodies) applies = applies || target == b;
+    if (!applies) continue;
+    (field.kind == ForceFieldKind::acceleration ? acceleration : per_node) += field.value;
+  }
+  Real U = 0;
+  if (!acceleration.isZero() || !per_node.isZero()) {
+    for (int i = 0; i < body.n_nodes(); ++i) {
+      U -= (body.node_mass[i] * acceleration + per_node).dot(bw.x[i]);
+    }
+  }
+  for (std::size_t s = 0; s < springs.size(); ++s) {
+    const SpringModel& spring = springs[s];
+    if (spring.body != b || t < spring.t_begin || t > spring.t_end) continue;
+    const Real k = drive.spring_stiffness[s];
+    const Real d = (drive.spring_target[s] - bw.x[spring.node]).norm();
+    // The pull k d saturates at max_force F beyond d = F / k: U = F d - F^2 / (2 k) there.
+    U += k * d <= spring.max_force
+             ? 0.5 * k * d * d
+             : spring.max_force * d - 0.5 * spring.max_force * spring.max_force / k;
+  }
+  return U;
+}
+
 }  // namespace pbm

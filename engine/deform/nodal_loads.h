@@ -25,4 +25,13 @@ void compute_nodal_loads(const BodyModel& body, int b, std::span<const ForceFiel
                          std::span<const SpringModel> springs, const NodalLoadDrive& drive, Real t,
                          BodyWorkspace& bw);
 
+// The potential of those loads besides gravity [J] at bw.x: -sum f . x_i of the uniform force
+// fields, and each active spring's 1/2 k |target - x|^2, linear past its max_force (the
+// potential of the clamped pull). With it the stability guard counts what a moving spring
+// target or a switched-on field gives as work done by the inputs (docs/architecture.md,
+// "Stability guard"). Dampers are not potentials: they only take energy.
+Real nodal_load_potential(const BodyModel& body, int b, std::span<const ForceFieldDef> fields,
+                          std::span<const SpringModel> springs, const NodalLoadDrive& drive, Real t,
+                          const BodyWorkspace& bw);
+
 }  // namespace pbm

@@ -36,6 +36,9 @@ struct SolverDef {
   Real contact_dt_factor = 0.25;        // dt multiplier while in contact, (0, 1]
   int max_retries = 4;                  // stability guard: halvings per frame
   Real energy_growth_bound = 10.0;      // max (E_after / E_before) for one frame
+  // The run-level guard: the energy may grow beyond the inputs' work by this fraction of the
+  // run's largest kinetic + elastic energy (docs/architecture.md, "Stability guard").
+  Real energy_tolerance = 0.25;
   Real constraint_alpha = 10.0;         // Baumgarte alpha of (7.14) [1/s], >= 0
   std::optional<Real> constraint_beta;  // Baumgarte beta [1/s], >= 0; absent: = alpha (7.16)
   ConstraintSolverKind constraint_solver = ConstraintSolverKind::dense;

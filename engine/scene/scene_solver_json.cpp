@@ -37,6 +37,11 @@ constexpr auto kSolverFields = std::to_array<Field<SolverDef>>({
         {.key = "energy_growth_bound",
          .range = {.lo = 1},
          .description = "Largest E_after / E_before accepted for one frame."}),
+    value<&SolverDef::energy_tolerance>(
+        {.key = "energy_tolerance",
+         .range = kPositive,
+         .description = "Run-level guard: growth of the total energy beyond the inputs' work, as "
+                        "a fraction of the run's largest kinetic + elastic energy."}),
     value<&SolverDef::constraint_alpha>(
         {.key = "constraint_alpha",
          .unit = "1/s",

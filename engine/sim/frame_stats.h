@@ -16,7 +16,7 @@ namespace pbm {
 struct BodyFrameStats {
   VecX q_s;                       // current global parameters (n_shape)
   Real kinetic = 0, elastic = 0;  // [J]; elastic includes the obstacles' push (5.11)
-  Real potential = 0;             // gravity [J]
+  Real potential = 0;             // gravity, force fields and springs [J]
   Vec3 position = Vec3::Zero();   // q_c [m]
 };
 
@@ -27,6 +27,9 @@ struct FrameStats {
   int retries = 0;                               // halvings of the substep the guard needed
   int evaluations = 0;                           // rate evaluations of the accepted attempt
   Real kinetic = 0, elastic = 0, potential = 0;  // totals [J]
+  // The run-level guard after the frame: the energy gained beyond the inputs' work and the most
+  // it may be (State::energy_surplus, solver.energy_tolerance x scale) [J].
+  Real energy_surplus = 0, energy_limit = 0;
   Real hinge_energy = 0;          // the hinges' rotational springs, part of `elastic` [J]
   Real min_distance = 1e300;      // min signed distance of any node to any obstacle after the frame
   int contacts = 0;               // touching nodes after the last substep (State::contact_nodes)

@@ -129,7 +129,9 @@ void measure_bodies(const Model& model, const State& state, Workspace& ws, Frame
     bs.q_s = bw.q_s;
     bs.kinetic = e.kinetic;
     bs.elastic = e.elastic;
-    bs.potential = e.potential;
+    const NodalLoadDrive loads{ws.drive.gravity, ws.drive.spring_target, ws.drive.spring_stiffness};
+    bs.potential = e.potential + nodal_load_potential(body, static_cast<int>(b), model.force_fields,
+                                                      model.springs, loads, state.time, bw);
     bs.position = position_of(q);
   }
 }

@@ -38,6 +38,8 @@ std::uint64_t hash_state(const State& state) {
   mix(state.v.data(), sizeof(Real) * state.v.size());
   mix(&state.rk45_step, sizeof state.rk45_step);
   mix(&state.contact_nodes, sizeof state.contact_nodes);
+  mix(&state.energy_surplus, sizeof state.energy_surplus);
+  mix(&state.energy_scale, sizeof state.energy_scale);
   return h;
 }
 

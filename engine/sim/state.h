@@ -22,6 +22,13 @@ struct State {
   // Nodes touching an obstacle or another body after the last substep: with
   // solver.contact_step_reduction it decides whether the next substep is divided (end of 5.2.2).
   int contact_nodes = 0;
+  // The run-level stability guard (docs/architecture.md, "Stability guard"), kept here because
+  // it decides whether a later frame is accepted. energy_surplus: the largest growth of the
+  // total energy over the frames ending now beyond the work the inputs did, max(0, surplus +
+  // frame's growth) [J]. energy_scale: the most kinetic + elastic energy any frame started with
+  // [J], what the surplus is judged against.
+  Real energy_surplus = 0;
+  Real energy_scale = 0;
 };
 
 State initial_state(const Model& model);

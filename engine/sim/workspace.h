@@ -38,6 +38,10 @@ struct Workspace {
   // advance_frame's own: the frame's start (its retry point) and the guard's measurements.
   State frame_start;
   FrameStats before, after;
+  // The frame's start state measured with the drive of its end, and its end state with the drive
+  // of its start: the run-level guard's trapezoid for the work a time-dependent drive does
+  // (sim/world.cpp). Only when tracks or springs make the drive depend on time.
+  FrameStats start_at_end_drive, end_at_start_drive;
   // The measurement that ended the last frame, and the state it measured: the next frame starts
   // from it unless the state was changed in between (a seek, an edit). A cache: equal to what
   // measuring that state again gives.

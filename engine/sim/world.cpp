@@ -53,15 +53,43 @@ std::string describe_failure(const World& world, const State& state) {
 }
 
 // Energy the frame from state.time to t_end may legitimately gain besides potential energy
-// (springs, moving obstacles, assembling constraints), summed in table order.
-Real energy_allowance(const World& world, const Inputs& inputs, const State& state, Real t_end,
-                      Workspace& ws) {
+// (springs, moving obstacles, assembling constraints), summed in table order. `work`: the part
+// that is work done by inputs that are no potential (moving obstacles, Baumgarte's feedback),
+// which the run-level guard adds to what the run may gain; the bodies' part is a floor.
+struct Allowance {
   Real floor = 0;
+  Real work = 0;
+};
+Allowance energy_allowance(const World& world, const Inputs& inputs, const State& state, Real t_end,
+                           Workspace& ws) {
+  Allowance a;
   for (const Subsystem* subsystem : world.subsystems) {
     if (!subsystem->energy_allowance) continue;
-    floor += subsystem->energy_allowance(*world.model, inputs, state, t_end, ws);
+    const Real part = subsystem->energy_allowance(*world.model, inputs, state, t_end, ws);
+    a.floor += part;
+    if (subsystem->id != SubsystemId::bodies) a.work += part;
   }
-  return floor;
+  return a;
+}
+
+Real total_energy(const FrameStats& s) {
+  return s.kinetic + s.elastic + s.potential;
+}
+
+// The body whose kinetic + elastic energy grew most in the frame.
+std::string body_that_gained(const Model& model, const FrameStats& before,
+                             const FrameStats& after) {
+  std::size_t best = 0;
+  Real most = -1e300;
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    const Real gain = after.bodies[b].kinetic + after.bodies[b].elastic - before.bodies[b].kinetic -
+                      before.bodies[b].elastic;
+    if (gain > most) {
+      most = gain;
+      best = b;
+    }
+  }
+  return model.bodies.empty() ? std::string() : model.bodies[best].name;
 }
 
 // Names the body whose energy grew most out of line, or "" (the growth is then the whole's).
@@ -216,8 +244,17 @@ FrameResult advance_frame(const World& world, const Inputs& inputs, State& state
   } else {
     measure_state(world, inputs, state, ws, before);
   }
-  const Real floor = energy_allowance(world, inputs, state, t_end, ws);
+  const Allowance allowance = energy_allowance(world, inputs, state, t_end, ws);
+  const Real floor = allowance.floor;
+  state.energy_scale = std::max(state.energy_scale, before.kinetic + before.elastic);
+  // The drive depends on time only through tracks and the springs' windows.
+  const bool timed_drive = !model.tracks.empty() || !model.springs.empty();
   ws.frame_start = state;
+  if (timed_drive) {
+    state.time = t_end;
+    measure_state(world, inputs, state, ws, ws.start_at_end_drive);
+    state.time = ws.frame_start.time;
+  }
   for (int attempt = 0; attempt <= model.solver.max_retries; ++attempt) {
     const int substeps = base_substeps << attempt;
     const Real h = frame_dt / substeps;
@@ -244,6 +281,10 @@ FrameResult advance_frame(const World& world, const Inputs& inputs, State& state
                 std::to_string(model.solver.tolerance) + ")";
     } else if (failure = describe_failure(world, state); !failure.empty()) {
     } else {
+      if (timed_drive) {
+        state.time = ws.frame_start.time;
+        measure_state(world, inputs, state, ws, ws.end_at_start_drive);
+      }
       state.time = t_end;
       measure_state(world, inputs, state, ws, after);
       const Real e0 = before.kinetic + before.elastic;
@@ -255,6 +296,32 @@ FrameResult advance_frame(const World& world, const Inputs& inputs, State& state
                   std::to_string(e1) + " J in one frame";
         const std::string body = body_that_grew(model, before, after, e0, e1);
         if (!body.empty()) failure = "body '" + body + "': " + failure;
+      } else {
+        // The run-level guard: the total energy's growth over the frame beyond the work of the
+        // inputs, accumulated while positive. A drive that depends on time (tracks moving
+        // spring targets, rest shapes, gravity; springs switching on) works through the
+        // potential's explicit change, integrated over the frame by the trapezoid rule on its
+        // two ends; moving obstacles and Baumgarte's feedback by their allowances.
+        Real drive_work = 0;
+        if (timed_drive) {
+          drive_work = 0.5 * (total_energy(after) - total_energy(ws.end_at_start_drive) +
+                              total_energy(ws.start_at_end_drive) - total_energy(before));
+        }
+        const Real growth =
+            total_energy(after) - total_energy(before) - drive_work - allowance.work;
+        const Real surplus = std::max(0.0, state.energy_surplus + growth);
+        const Real limit = model.solver.energy_tolerance * (state.energy_scale + floor);
+        if (!(surplus <= limit)) {
+          failure = "body '" + body_that_gained(model, before, after) + "': the energy grew by " +
+                    std::to_string(surplus) +
+                    " J beyond the work of the inputs, more than solver.energy_tolerance " +
+                    std::to_string(model.solver.energy_tolerance) + " x " +
+                    std::to_string(state.energy_scale + floor) + " J";
+        } else {
+          state.energy_surplus = surplus;
+          after.energy_surplus = surplus;
+          after.energy_limit = limit;
+        }
       }
     }
     if (failure.empty()) {
