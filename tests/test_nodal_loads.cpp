@@ -6,7 +6,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
+#include "deform/body_dynamics.h"
+#include "deform/nodal_loads.h"
 #include "scene_builders.h"
 #include "sim/state.h"
 
@@ -124,6 +127,53 @@ TEST(NodalLoads, SpringIsADampedOscillatorInsideItsTimeWindow) {
     EXPECT_LT(run.v_drift, 1e-12);
   }
   EXPECT_NEAR(coarse.worst / fine.worst, 2.0, 0.3);
+}
+
+// The potential the stability guard counts (nodal_load_potential) is the one whose gradient is
+// the loads: -dU/dx_i against the force compute_nodal_loads writes (no gravity, no damping), by
+// central differences at every node, with a spring inside and past its max_force.
+TEST(NodalLoads, ThePotentialOfTheLoadsIsTheirGradient) {
+  for (const Real max_force : {1e300, 0.5}) {
+    BodyDef b = test::ball(DeformLevel::local, 6);
+    b.material.damping = 0;
+    Scene s = test::free_space(b);
+    s.force_fields = {
+        {.kind = ForceFieldKind::acceleration, .value = Vec3(0.3, -1, 2), .bodies = {}},
+        {.kind = ForceFieldKind::force_per_node, .value = Vec3(0.1, 0.2, -0.4), .bodies = {}}};
+    SpringDef spring;
+    spring.node = 3;
+    spring.stiffness = 40;
+    spring.damping = 0;
+    spring.max_force = max_force;
+    spring.target = Vec3(0.3, 0.5, 2);
+    s.springs = {spring};
+    Simulation sim(s);
+    const BodyModel& body = sim.model.bodies[0];
+    BodyWorkspace& bw = sim.ws.bodies[0];
+    compute_body_kinematics(body, body_q(body, sim.state.q), body_v(body, sim.state.v), bw);
+    const std::vector<Real> k = {spring.stiffness};
+    const std::vector<Vec3> target = {spring.target};
+    const NodalLoadDrive drive{Vec3::Zero(), target, k};
+    compute_nodal_loads(body, 0, sim.model.force_fields, sim.model.springs, drive, 0.0, bw);
+    const std::vector<Vec3> force(bw.force.begin(), bw.force.begin() + body.n_nodes());
+    Real worst = 0;
+    const Real h = 1e-6;
+    for (int i = 0; i < body.n_nodes(); ++i) {
+      for (int c = 0; c < 3; ++c) {
+        const Real x = bw.x[i][c];
+        bw.x[i][c] = x + h;
+        const Real up = nodal_load_potential(body, 0, sim.model.force_fields, sim.model.springs,
+                                             drive, 0.0, bw);
+        bw.x[i][c] = x - h;
+        const Real down = nodal_load_potential(body, 0, sim.model.force_fields, sim.model.springs,
+                                               drive, 0.0, bw);
+        bw.x[i][c] = x;
+        worst = std::max(worst, std::abs(-(up - down) / (2 * h) - force[i][c]));
+      }
+    }
+    std::printf("max_force %g: |-dU/dx - f| at most %.2e N\n", max_force, worst);
+    EXPECT_LT(worst, 1e-7);
+  }
 }
 
 }  // namespace

@@ -2,12 +2,10 @@
 
 namespace pbm {
 
-void compute_nodal_loads(const BodyModel& body, int b, std::span<const ForceFieldDef> fields,
-                         std::span<const SpringModel> springs, const NodalLoadDrive& drive, Real t,
-                         BodyWorkspace& bw) {
-  const bool second = body.order == DynamicsOrder::second;
-  Vec3 acceleration = drive.gravity;
-  Vec3 per_node = Vec3::Zero();
+namespace {
+
+// The force fields that apply to body b, summed: an acceleration and a force on every node.
+void sum_fields(std::span<const ForceFieldDef> fields, int b, Vec3& acceleration, Vec3& per_node) {
   for (const ForceFieldDef& field : fields) {
     bool applies = field.bodies.empty();
     for (int target : field.bodies) applies = applies || target == b;
@@ -17,6 +15,17 @@ void compute_nodal_loads(const BodyModel& body, int b, std::span<const ForceFiel
     else
       per_node += field.value;
   }
+}
+
+}  // namespace
+
+void compute_nodal_loads(const BodyModel& body, int b, std::span<const ForceFieldDef> fields,
+                         std::span<const SpringModel> springs, const NodalLoadDrive& drive, Real t,
+                         BodyWorkspace& bw) {
+  const bool second = body.order == DynamicsOrder::second;
+  Vec3 acceleration = drive.gravity;
+  Vec3 per_node = Vec3::Zero();
+  sum_fields(fields, b, acceleration, per_node);
   for (int i = 0; i < body.n_nodes(); ++i) {
     const Real m = body.node_mass[i];
     bw.force[i] = m * acceleration + per_node;
@@ -40,12 +49,7 @@ Real nodal_load_potential(const BodyModel& body, int b, std::span<const ForceFie
                           const BodyWorkspace& bw) {
   Vec3 acceleration = Vec3::Zero();
   Vec3 per_node = Vec3::Zero();
-  for (const ForceFieldDef& field : fields) {
-    bool applies = field.bodies.empty();
-    for (int target : field.bodies) applies = applies || target == b;
-    if (!applies) continue;
-    (field.kind == ForceFieldKind::acceleration ? acceleration : per_node) += field.value;
-  }
+  sum_fields(fields, b, acceleration, per_node);
   Real U = 0;
   if (!acceleration.isZero() || !per_node.isZero()) {
     for (int i = 0; i < body.n_nodes(); ++i) {
