@@ -107,7 +107,7 @@ Real max_distance(const std::vector<VecX>& a, const std::vector<VecX>& b) {
 }
 
 // The differences of the centre path and of q_s over the first 60 frames (the fall, the slope,
-// the bounces) between successive refinements shrink by >= 1.5 each time (measured 2.2-6).
+// the bounces) between successive refinements shrink by >= 1.5 each time (measured 2.2-4.9).
 void expect_converges(const std::string& name) {
   const int frames = 60;
   const Real substep = build_model(at_rings(name, 128)).substep;
