@@ -311,7 +311,8 @@ FrameResult advance_frame(const World& world, const Inputs& inputs, State& state
             total_energy(after) - total_energy(before) - drive_work - allowance.work;
         const Real surplus = std::max(0.0, state.energy_surplus + growth);
         // The scale counts the frame's end too: a ball dropped from rest has its kinetic energy
-        // only there, and an explosion's own growth never reaches 1 / tolerance of itself.
+        // only there. An explosion is still caught: its surplus grows as fast as its energy,
+        // and the limit is only a quarter of that.
         const Real scale = std::max(state.energy_scale, e1);
         const Real limit = model.solver.energy_tolerance * (scale + floor);
         if (!(surplus <= limit)) {
