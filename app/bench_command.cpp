@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 
@@ -10,6 +11,7 @@
 #include "bench_render.h"
 #include "bullet_soft_ellipsoid.h"
 #include "core/error.h"
+#include "scene/scene_enum_names.h"
 #include "scene/scene_json.h"
 #include "sim/simulation.h"
 
@@ -100,7 +102,9 @@ int run_bench(const BenchOptions& o) {
       "bench deform: one step of '%s' resting on the ground (dt = %g s or the ball's stability "
       "limit, last column; %s integrator) vs Bullet btSoftBody at the same dt\n",
       scene.name.c_str(), scene.solver.dt,
-      scene.solver.integrator == IntegratorKind::euler ? "euler" : "rk");
+      std::find_if(kIntegratorKindNames.begin(), kIntegratorKindNames.end(), [&](const auto& e) {
+        return e.second == scene.solver.integrator;
+      })->first.data());
   std::printf("%8s %14s %14s %14s %10s %12s %10s\n", "nodes", "ours us/step", "bullet nodes",
               "bullet us/step", "ratio", "ours us/node", "dt s");
   for (int resolution : {8, 16, 32, 64, 128}) {

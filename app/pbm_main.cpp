@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
   simulate->add_option("--seconds", sim.seconds, "simulated time (default: the scene's duration)");
   simulate->add_option("--frames", sim.frames, "number of frames after frame 0");
   simulate->add_option("--dt", sim.dt, "largest substep [s] (default: the scene's)");
-  simulate->add_option("--integrator", sim.integrator, "euler | rk4 | rk45");
+  simulate->add_option("--integrator", sim.integrator, "euler | rk4 | rk45 | implicit");
   simulate->add_option("--tolerance", sim.tolerance, "rk45 local error tolerance");
   simulate->add_option("--out", sim.states_out, "states as JSON lines (one per frame)");
   simulate->add_option("--stats", sim.stats_out, "per-frame statistics JSON");

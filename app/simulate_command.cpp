@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include "frame_output.h"
 #include "mesh_export.h"
 #include "progress_bar.h"
+#include "scene/scene_enum_names.h"
 #include "scene/scene_json.h"
 #include "sim/simulation.h"
 
@@ -53,14 +55,13 @@ void apply_overrides(const SimulateOptions& o, Scene& scene) {
     scene.solver.tolerance = *o.tolerance;
   }
   if (o.integrator) {
-    if (*o.integrator == "euler")
-      scene.solver.integrator = IntegratorKind::euler;
-    else if (*o.integrator == "rk4")
-      scene.solver.integrator = IntegratorKind::rk4;
-    else if (*o.integrator == "rk45")
-      scene.solver.integrator = IntegratorKind::rk45;
-    else
-      throw Error("", "--integrator", "must be euler, rk4 or rk45");
+    // The scene format's own names (scene/scene_enum_names.h), so the flag and the file agree.
+    const auto named =
+        std::find_if(kIntegratorKindNames.begin(), kIntegratorKindNames.end(),
+                     [&](const auto& entry) { return entry.first == *o.integrator; });
+    if (named == kIntegratorKindNames.end())
+      throw Error("", "--integrator", "must be euler, rk4, rk45 or implicit");
+    scene.solver.integrator = named->second;
   }
 }
 

@@ -5,6 +5,7 @@
 
 #include "collide/obstacle.h"
 #include "core/quaternion.h"
+#include "deform/implicit_membrane.h"
 #include "deform/reference_shape.h"
 
 namespace pbm {
@@ -359,8 +360,117 @@ int add_contact_forces(Obstacles obstacles, const BodyModel& body, BodyWorkspace
   return touching;
 }
 
+namespace {
+
+// The implicit integrator's contact (deform/implicit_membrane.h): the penetrating nodes are moved
+// out, then the touching ones stopped along the normal, by the smallest change that shares each
+// push between the body's local displacements (in the metric of the substep's H) and its rigid
+// and global coordinates: positions through a translation of c (compliance 1 / mass), velocities
+// through c-dot, omega and q_s-dot (compliance P A^+ P^T). A stiff membrane then moves and stops
+// as a whole where the node-by-node projection below would dent it by the step's whole
+// penetration. Coulomb's law limits each node's slip change by beta_f times its normal change
+// (5.12), as there.
+void resolve_compliant(Obstacles obstacles, const BodyModel& body, Eigen::Ref<VecX> q,
+                       Eigen::Ref<VecX> v, BodyWorkspace& ws) {
+  const int n = body.n_nodes();
+  const int d_q = body.layout.displacement_in_q(), d_v = body.layout.displacement_in_v();
+  std::vector<int> list;
+  std::vector<Vec3> normals;
+  std::vector<Real> amounts;
+  std::vector<int> touching_obstacle(static_cast<std::size_t>(n), -1);
+  std::vector<Vec3> touching_normal(static_cast<std::size_t>(n), Vec3::Zero());
+  VecX change(3 * n), lambda;
+  MatX global;
+  // A node pushed into a second obstacle is taken again in the next pass.
+  for (int pass = 0; pass < 4; ++pass) {
+    list.clear();
+    normals.clear();
+    amounts.clear();
+    for (int i = 0; i < n; ++i) {
+      int o;
+      Vec3 normal;
+      const Real phi = deepest(obstacles, ws.x[i], o, normal);
+      if (phi >= kProjectionMargin * 0.5) continue;
+      list.push_back(i);
+      normals.push_back(normal);
+      amounts.push_back(kProjectionMargin - phi);
+      touching_obstacle[i] = o;
+      touching_normal[i] = normal;
+    }
+    if (list.empty()) break;
+    const int m = static_cast<int>(list.size());
+    global.resize(m, m);
+    for (int r = 0; r < m; ++r)
+      for (int c = 0; c < m; ++c) global(r, c) = normals[r].dot(normals[c]) / body.mass;
+    implicit_node_correction(body, ws, list, normals, amounts, global, change, lambda);
+    Vec3 shift = Vec3::Zero();
+    for (int r = 0; r < m; ++r) shift += lambda[r] * normals[r] / body.mass;
+    position_of(q) += shift;
+    const Mat3 Rt = ws.R.transpose();
+    for (int i = 0; i < n; ++i) {
+      const Vec3 dx = change.segment<3>(3 * i);
+      q.segment<3>(d_q + 3 * i) += Rt * dx;
+      ws.x[i] += dx + shift;
+    }
+  }
+  // The mass block at the moved state, for the velocities' global compliance.
+  recenter_displacements(body, q, v);
+  compute_body_kinematics(body, q, v, ws, false);
+  factor_generalized_mass(body, q, ws);
+  list.clear();
+  normals.clear();
+  amounts.clear();
+  for (int i = 0; i < n; ++i) {
+    const int o = touching_obstacle[i];
+    if (o < 0) continue;
+    const Vec3& normal = touching_normal[i];
+    const Real vn = (ws.x_dot[i] - obstacles[o].velocity_at(ws.x[i])).dot(normal);
+    if (vn >= 0) continue;
+    list.push_back(i);
+    normals.push_back(normal);
+    amounts.push_back(-vn);
+  }
+  if (list.empty()) return;
+  const int m = static_cast<int>(list.size());
+  const int k = body.n_generalized();
+  const Mat3 Rt = ws.R.transpose();
+  MatX G(k, m), AG(k, m);
+  for (int r = 0; r < m; ++r) {
+    G.col(r) = generalized_from_node(body, ws, list[r], Rt * normals[r]);
+    VecX column;
+    solve_generalized_mass(ws, G.col(r), column);
+    AG.col(r) = column;
+  }
+  global = G.transpose() * AG;
+  implicit_node_correction(body, ws, list, normals, amounts, global, change, lambda);
+  const VecX dnu = AG * lambda;  // change of (R^T c-dot, omega, q_s-dot)
+  velocity_of(v) += ws.R * dnu.head<3>();
+  omega_of(v) += dnu.segment<3>(3);
+  if (body.n_s > 0) v.segment(BodyLayout::kShapeInV, body.n_s) += dnu.tail(body.n_s);
+  for (int i = 0; i < n; ++i) {
+    Vec3 dv = change.segment<3>(3 * i);  // the local part, world frame
+    const int o = touching_obstacle[i];
+    if (o >= 0 && obstacles[o].friction > 0) {
+      const Vec3& normal = touching_normal[i];
+      const Vec3 node_change = dv + ws.R * node_from_generalized(body, ws, i, dnu);
+      const Real stopped = node_change.dot(normal);
+      const Vec3 v_rel = ws.x_dot[i] + node_change - obstacles[o].velocity_at(ws.x[i]);
+      const Vec3 slip = v_rel - v_rel.dot(normal) * normal;
+      const Real speed = slip.norm();
+      if (speed > 0 && stopped > 0) {
+        dv -= std::min(speed, obstacles[o].friction * stopped) * slip / speed;
+      }
+    }
+    v.segment<3>(d_v + 3 * i) += Rt * dv;
+  }
+  compute_body_kinematics(body, q, v, ws, false);
+}
+
+}  // namespace
+
 ContactResolution resolve_penetrations(Obstacles obstacles, const BodyModel& body,
-                                       Eigen::Ref<VecX> q, Eigen::Ref<VecX> v, BodyWorkspace& ws) {
+                                       Eigen::Ref<VecX> q, Eigen::Ref<VecX> v, BodyWorkspace& ws,
+                                       bool implicit) {
   ContactResolution result;
   // Local bodies need their node velocities (and always a resplit); the shape and its Jacobian
   // computed here serve the next step's first evaluation too (q_s is not changed below).
@@ -377,8 +487,19 @@ ContactResolution resolve_penetrations(Obstacles obstacles, const BodyModel& bod
     if (deepest(obstacles, ws.x[i], o, n) < 0) nodes.push_back(i);
   }
   result.penetrating_nodes = static_cast<int>(nodes.size());
+  const bool compliant = body.has_local && implicit && !nodes.empty();
+  if (compliant) {
+    resolve_compliant(obstacles, body, q, v, ws);
+    // What the correction left inside (a node it would have had to pull) is projected below.
+    nodes.clear();
+    for (int i = 0; i < body.n_nodes(); ++i) {
+      int o;
+      Vec3 n;
+      if (deepest(obstacles, ws.x[i], o, n) < 0) nodes.push_back(i);
+    }
+  }
   if (body.has_local) {
-    if (!nodes.empty()) {
+    if (!nodes.empty() || compliant) {
       const Mat3 Rt = ws.R.transpose();
       const int d_q = body.layout.displacement_in_q(), d_v = body.layout.displacement_in_v();
       for (int i : nodes) {

@@ -54,8 +54,11 @@ struct ContactResolution {
 
 // After a step: makes every node of the body lie outside every obstacle (see above). Leaves ws
 // with the kinematics of the resolved state when it changed anything.
+// implicit: the implicit integrator's compliant correction (resolve_compliant in the .cpp) for
+// local bodies, in the metric of the substep's factor.
 ContactResolution resolve_penetrations(Obstacles obstacles, const BodyModel& body,
-                                       Eigen::Ref<VecX> q, Eigen::Ref<VecX> v, BodyWorkspace& ws);
+                                       Eigen::Ref<VecX> q, Eigen::Ref<VecX> v, BodyWorkspace& ws,
+                                       bool implicit = false);
 
 // Energy stored in the obstacles' push (5.11) on a local body, sum of 0.5 a K_ii phi^2 over its
 // pressing frame points. Needs kinematics.

@@ -134,7 +134,9 @@ ConstraintSystemModel build_constraints(std::span<const ConstraintDef> defs,
     parent[ra] = rb;
   }
 
-  const bool euler = settings.integrator == IntegratorKind::euler;
+  // The implicit integrator advances constraints with Euler's update (integrate/integrators.h).
+  const bool euler = settings.integrator == IntegratorKind::euler ||
+                     settings.integrator == IntegratorKind::implicit;
   const Real limit = euler ? kStiffGainEuler : kStiffGainRungeKutta;
   for (const PointConstraintModel& point : system.points) {
     const Real gain = std::max(point.alpha, point.beta) * settings.dt;

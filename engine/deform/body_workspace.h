@@ -5,12 +5,49 @@
 
 #include <vector>
 
+#include <Eigen/LU>
+#include <Eigen/SparseCholesky>
+
 #include "core/symmetric_eigen.h"
 #include "core/types.h"
 #include "deform/body_model.h"
 #include "deform/superquadric.h"
 
 namespace pbm {
+
+// The implicit membrane's scratch (deform/implicit_membrane.h), sized only when the scene's
+// integrator is "implicit": the scalar K_dd, the factor of H = a M + b K (one per substep length,
+// reused while it stays) and the dense columns of the k x k correction.
+struct ImplicitMembraneWorkspace {
+  // Eigen's factor cannot be copied; a copied workspace starts without one and factors on first
+  // use, which gives the same numbers.
+  struct Factor {
+    Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt;
+    bool analyzed = false;  // symbolic analysis of H's pattern done
+    Real a = -1, b = -1;    // coefficients of the factored H (-1: none)
+    Factor() = default;
+    Factor(const Factor&) {}
+    Factor& operator=(const Factor&) {
+      analyzed = false;
+      a = b = -1;
+      return *this;
+    }
+  };
+  Eigen::SparseMatrix<double> K;  // scalar K_dd (n x n); K_dd = K (x) I_3
+  Eigen::SparseMatrix<double> H;  // a M + b K, same pattern as K plus the diagonal
+  Factor factor;
+  int factorizations = 0;  // numeric factorizations so far
+  MatX columns;            // n x 3 (k + 1): M P and M g, coordinate c of column j in column 3 j + c
+  MatX solved;             // H^-1 of columns: Y and y0
+  MatX P;                  // 3 n x k: the rows P_i stacked (body frame)
+  MatX Z;                  // 3 n x (k + 1): M (P - Y) and M (g - y0)
+  MatX PtZ;                // k x (k + 1)
+  MatX A_pinv;             // k x k: A^+
+  MatX S;                  // k x k: I - A^+ P^T B Y
+  Eigen::PartialPivLU<MatX> lu;
+  VecX g, z, t3n;    // 3 n
+  VecX mu, rhs, tk;  // k
+};
 
 // Per-body scratch, sized once (no allocation inside a step). Rebuildable at any time.
 struct BodyWorkspace {
@@ -79,9 +116,10 @@ struct BodyWorkspace {
   VecX shape_key;  // q_s at which s (and J if shape_has_J) were evaluated
   VecX mass_key;   // body q at which A was last factored (empty = none)
   bool shape_has_J = false;
-  std::vector<Vec3> d_dot_body;  // d-dot per node, body frame (zero without q_d)
-  Vec3 omega = Vec3::Zero();     // angular velocity, body frame
-  Real dt = 0;                   // substep in progress (for rate-based contact damping)
+  std::vector<Vec3> d_dot_body;        // d-dot per node, body frame (zero without q_d)
+  Vec3 omega = Vec3::Zero();           // angular velocity, body frame
+  Real dt = 0;                         // substep in progress (rate-based contact damping, implicit)
+  ImplicitMembraneWorkspace implicit;  // empty unless the integrator is "implicit"
   const Vec3& d_dot(const BodyModel&, int i) const { return d_dot_body[i]; }
 };
 

@@ -90,25 +90,38 @@ void add_membrane_forces(const Tessellation& t, const MembraneStiffness& k,
   }
 }
 
-Eigen::SparseMatrix<double> assemble_membrane_stiffness(const Tessellation& t,
-                                                        const MembraneStiffness& k) {
+Eigen::SparseMatrix<double> assemble_scalar_membrane_stiffness(const Tessellation& t,
+                                                               const MembraneStiffness& k) {
   assert(k.K_e.size() == t.elements.size());
   std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(t.elements.size() * 16 * 3);
+  entries.reserve(t.elements.size() * 16);
   for (size_t e = 0; e < t.elements.size(); ++e) {
     const Element& el = t.elements[e];
     const int n = element_node_count(el.kind);
     for (int i = 0; i < n; ++i) {
-      for (int j = 0; j < n; ++j) {
-        for (int c = 0; c < 3; ++c) {
-          entries.emplace_back(3 * el.nodes[i] + c, 3 * el.nodes[j] + c, k.K_e[e](i, j));
-        }
+      for (int j = 0; j < n; ++j) entries.emplace_back(el.nodes[i], el.nodes[j], k.K_e[e](i, j));
+    }
+  }
+  Eigen::SparseMatrix<double> K(t.node_count(), t.node_count());
+  K.setFromTriplets(entries.begin(), entries.end());  // sums duplicates: the assembly (4.38)
+  return K;
+}
+
+Eigen::SparseMatrix<double> assemble_membrane_stiffness(const Tessellation& t,
+                                                        const MembraneStiffness& k) {
+  const Eigen::SparseMatrix<double> scalar = assemble_scalar_membrane_stiffness(t, k);
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(3 * static_cast<size_t>(scalar.nonZeros()));
+  for (int col = 0; col < scalar.outerSize(); ++col) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(scalar, col); it; ++it) {
+      for (int c = 0; c < 3; ++c) {
+        entries.emplace_back(3 * static_cast<int>(it.row()) + c, 3 * col + c, it.value());
       }
     }
   }
   const int size = 3 * t.node_count();
   Eigen::SparseMatrix<double> K(size, size);
-  K.setFromTriplets(entries.begin(), entries.end());  // sums duplicates: the assembly (4.38)
+  K.setFromTriplets(entries.begin(), entries.end());
   return K;
 }
 

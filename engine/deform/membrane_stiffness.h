@@ -39,6 +39,11 @@ MembraneStiffness build_membrane_stiffness(const Tessellation& t, Real w0, Real 
 void add_membrane_forces(const Tessellation& t, const MembraneStiffness& k,
                          const Eigen::Ref<const VecX>& q_d, Eigen::Ref<VecX> f);
 
+// The scalar matrix sum_j K^j_ddk (n_nodes x n_nodes) shared by the three coordinates:
+// K_dd = K (x) I_3 in the node-major layout.
+Eigen::SparseMatrix<double> assemble_scalar_membrane_stiffness(const Tessellation& t,
+                                                               const MembraneStiffness& k);
+
 // K_dd = sum_j K^j_dd expanded to 3 n_nodes x 3 n_nodes (4.38), for tests and implicit solves.
 Eigen::SparseMatrix<double> assemble_membrane_stiffness(const Tessellation& t,
                                                         const MembraneStiffness& k);

@@ -8,7 +8,9 @@
 
 namespace pbm {
 
-enum class IntegratorKind { euler, rk4, rk45 };
+// implicit: Euler's update (6.1) with rates that subsystems with stiff parts evaluate as the
+// linearized backward-Euler increment over the substep (deform/implicit_membrane.h).
+enum class IntegratorKind { euler, rk4, rk45, implicit };
 
 // qdot (n_q) and vdot (n_v) of the system at (t, q, v).
 using DerivativeFn =

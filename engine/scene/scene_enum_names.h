@@ -24,19 +24,19 @@ inline constexpr NameTable<ShapeKind, 3> kShapeKindNames{{{"superquadric", Shape
                                                           {"general", ShapeKind::general}}};
 inline constexpr NameTable<TessellationKind, 2> kTessellationKindNames{
     {{"quads", TessellationKind::quads}, {"triangles", TessellationKind::triangles}}};
-inline constexpr NameTable<IntegratorKind, 3> kIntegratorKindNames{
+inline constexpr NameTable<IntegratorKind, 4> kIntegratorKindNames{
     {{"euler", IntegratorKind::euler},
      {"rk4", IntegratorKind::rk4},
-     {"rk45", IntegratorKind::rk45}}};
+     {"rk45", IntegratorKind::rk45},
+     {"implicit", IntegratorKind::implicit}}};
 inline constexpr NameTable<ObstacleKind, 3> kObstacleKindNames{
     {{"plane", ObstacleKind::plane}, {"box", ObstacleKind::box}, {"mesh", ObstacleKind::mesh}}};
 inline constexpr NameTable<ForceFieldKind, 2> kForceFieldKindNames{
     {{"acceleration", ForceFieldKind::acceleration},
      {"force_per_node", ForceFieldKind::force_per_node}}};
-inline constexpr NameTable<Interpolation, 3> kInterpolationNames{
-    {{"linear", Interpolation::linear},
-     {"smooth", Interpolation::smooth},
-     {"step", Interpolation::step}}};
+inline constexpr NameTable<Interpolation, 3> kInterpolationNames{{{"linear", Interpolation::linear},
+                                                                  {"smooth", Interpolation::smooth},
+                                                                  {"step", Interpolation::step}}};
 inline constexpr NameTable<ConstraintKind, 2> kConstraintKindNames{
     {{"point", ConstraintKind::point}, {"hinge", ConstraintKind::hinge}}};
 inline constexpr NameTable<ConstraintSolverKind, 2> kConstraintSolverKindNames{

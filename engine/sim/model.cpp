@@ -44,7 +44,11 @@ TrackModel build_track(const Scene& scene, int t) {
 // stability guard sees only once it is large. rk45 adapts its own steps and needs no limit.
 void limit_substep(Model& model) {
   model.substep = model.solver.dt;
-  if (model.solver.integrator == IntegratorKind::rk45) return;
+  // rk45 adapts its own steps; the implicit integrator takes the membrane at the step's end,
+  // stable at any step (deform/implicit_membrane.h).
+  if (model.solver.integrator == IntegratorKind::rk45 ||
+      model.solver.integrator == IntegratorKind::implicit)
+    return;
   constexpr Real kSafety = 0.9;
   // The substep the frames take at solver.dt: a frame is divided into equal substeps.
   const Real frame = 1.0 / model.solver.fps;

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "deform/body_dynamics.h"
+#include "deform/implicit_membrane.h"
 #include "deform/nodal_loads.h"
 #include "deform/shape_parameters.h"
 #include "sim/snapshot_geometry.h"
@@ -24,6 +25,10 @@ void size_bodies(const Model& model, Workspace& ws) {
   ws.bodies.resize(model.bodies.size());
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     resize_workspace(model.bodies[b], ws.bodies[b]);
+    // Only a scene that asks for the implicit integrator pays for K_dd's factor.
+    if (model.solver.integrator == IntegratorKind::implicit) {
+      prepare_implicit_membrane(model.bodies[b], ws.bodies[b]);
+    }
   }
   ws.first_order_velocity.setZero(model.n_v);
 }
@@ -52,7 +57,11 @@ void body_dynamics(const RateContext& c) {
   for (std::size_t b = 0; b < c.model.bodies.size(); ++b) {
     const BodyModel& body = c.model.bodies[b];
     auto out = body_v(body, c.v_dot);
-    solve_body_dynamics(body, body_q(body, c.q), body_v(body, c.v), c.ws.bodies[b], out);
+    BodyWorkspace& bw = c.ws.bodies[b];
+    solve_body_dynamics(body, body_q(body, c.q), body_v(body, c.v), bw, out);
+    if (c.model.solver.integrator == IntegratorKind::implicit) {
+      implicit_membrane_rates(body, body_v(body, c.v), bw, bw.dt, out);
+    }
   }
 }
 

@@ -30,7 +30,8 @@ void obstacle_collisions(const SubstepContext& c) {
   for (std::size_t b = 0; b < c.model.bodies.size(); ++b) {
     const BodyModel& body = c.model.bodies[b];
     resolve_penetrations(c.ws.drive.obstacles, body, body_q(body, c.state.q),
-                         body_v(body, c.state.v), c.ws.bodies[b]);
+                         body_v(body, c.state.v), c.ws.bodies[b],
+                         c.model.solver.integrator == IntegratorKind::implicit);
   }
 }
 

@@ -171,6 +171,7 @@ bool advance_substep(const World& world, const Inputs& inputs, State& state, Rea
     };
     switch (model.solver.integrator) {
       case IntegratorKind::euler:
+      case IntegratorKind::implicit:  // the bodies' rates are the backward-Euler increment
         euler_step(rates, kinematic, state.time, dt, state.q, state.v, ws.integrator, istats);
         break;
       case IntegratorKind::rk4:
