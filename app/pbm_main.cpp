@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include "bench_command.h"
+#include "bench_tradeoff.h"
 #include "render_command.h"
 #include "simulate_command.h"
 
@@ -47,14 +48,26 @@ int main(int argc, char** argv) {
   auto* bench_cmd = app.add_subcommand(
       "bench",
       "benchmarks: deform (ours vs Bullet btSoftBody), render (ours vs a bare draw), "
-      "constraints (dense vs sparse constraint solve), drag (a mouse-drag move vs recompiling)");
-  bench_cmd->add_option("what", bench.what, "deform | render | constraints | drag")->required();
+      "constraints (dense vs sparse constraint solve), drag (a mouse-drag move vs recompiling), "
+      "tradeoff <scene> (error against cost over a sweep of the knobs: CSV and PNG)");
+  bench_cmd->add_option("what", bench.what, "deform | render | constraints | drag | tradeoff")
+      ->required();
   bench_cmd->add_option("--steps", bench.steps, "steps timed per size (drag: frames of moves)");
   bench_cmd->add_option("--scene", bench.scene,
                         "scene of deform, render and drag (default scenes/jello-ball.json)");
   bench_cmd->add_option("--max-nodes", bench.max_nodes, "largest node count to run");
   bench_cmd->add_option("--max-constraints", bench.max_constraints,
                         "constraints: largest number of constraints to run");
+
+  pbm::TradeoffCommandOptions tradeoff;
+  bench_cmd->add_option("target", tradeoff.scene, "tradeoff: the scene JSON file");
+  bench_cmd->add_option("--knobs", tradeoff.knobs,
+                        "tradeoff: knobs to sweep, of dt,integrator,tolerance,resolution "
+                        "(default dt,integrator,resolution)");
+  bench_cmd->add_option("--seconds", tradeoff.seconds, "tradeoff: simulated time per run (2)");
+  bench_cmd->add_option("--reference-tolerance", tradeoff.reference_tolerance,
+                        "tradeoff: rk45 tolerance of the reference run (1e-7)");
+  bench_cmd->add_option("--out", tradeoff.out, "tradeoff: folder of the CSV and PNG (out)");
 
   try {
     app.parse(argc, argv);
@@ -66,6 +79,10 @@ int main(int argc, char** argv) {
   if (*validate) return pbm::run_validate(validate_scene, validate_materials);
   if (*simulate) return pbm::run_simulate(sim);
   if (*render_cmd) return pbm::run_render(render);
+  if (*bench_cmd && bench.what == "tradeoff") {
+    if (tradeoff.scene.empty()) tradeoff.scene = bench.scene;
+    return pbm::run_bench_tradeoff(tradeoff);
+  }
   if (*bench_cmd) return pbm::run_bench(bench);
   return 2;
 }

@@ -14,10 +14,11 @@ find_package(Bullet REQUIRED)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(OSMESA REQUIRED IMPORTED_TARGET osmesa)
 pkg_check_modules(PNG REQUIRED IMPORTED_TARGET libpng)
-# The studio: Qt 6 widgets with an OpenGL viewport, and Dear ImGui (1.86, Debian's static
-# library; its OpenGL backend is not used, see ui/imgui_renderer.h).
+# Dear ImGui (1.86, Debian's static library; its OpenGL backend is not used, see
+# ui/imgui_renderer.h): the studio's panels, and the font of `pbm bench tradeoff`'s plot.
+pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)
+# The studio: Qt 6 widgets with an OpenGL viewport.
 option(PBM_BUILD_STUDIO "Build the Qt studio (pbm-studio)" ON)
 if(PBM_BUILD_STUDIO)
   find_package(Qt6 6.4 REQUIRED COMPONENTS Widgets OpenGL OpenGLWidgets)
-  pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)
 endif()

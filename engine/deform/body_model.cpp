@@ -114,7 +114,7 @@ void distribute_mass(const MaterialDef& material, const std::string& file, const
 
 }  // namespace
 
-BodyModel build_body_model(const BodyDef& def, Real dt, const std::string& file,
+BodyModel build_body_model(const BodyDef& def, Real tau, const std::string& file,
                            const std::string& path) {
   BodyModel body;
   body.name = def.name;
@@ -166,14 +166,16 @@ BodyModel build_body_model(const BodyDef& def, Real dt, const std::string& file,
   body.contact_from_material = def.material.contact_stiffness > 0;
   if (body.has_local) build_contact_samples(body, def.material.contact_stiffness);
   // Inertia of the gauge direction n (deform/body_dynamics.h): omega = sqrt(n^T K_ss n / eta)
-  // at most 1 / (4 dt), and at least 1% of the mass times a0^2 so it is never negligible.
+  // at most 1 / (4 tau), and at least 1% of the mass times a0^2 so it is never negligible.
   // Parameters whose mass vanishes at some shapes (a bend's location and range weigh nothing
-  // while its amount is 0) get the floor eta_i = k_i dt^2, so omega_i dt <= 1 everywhere.
-  body.parameter_inertia_floor = body.k_s.head(body.n_s) * dt * dt;
+  // while its amount is 0) get the floor eta_i = k_i tau^2, so omega_i tau <= 1 everywhere. tau
+  // is solver.shape_inertia_time, by default solver.dt; the substep is kept below the limit this
+  // sets (deform/stability_limit.h), so a fixed tau leaves dt free to be refined.
+  body.parameter_inertia_floor = body.k_s.head(body.n_s) * tau * tau;
   if (body.n_s >= 4) {
     const VecX n_gauge = gauge_direction(body.q_s_fixed);
     const Real k_gauge = n_gauge.dot(body.k_s.cwiseProduct(n_gauge));
-    body.parameter_inertia = std::max(16.0 * k_gauge * dt * dt,
+    body.parameter_inertia = std::max(16.0 * k_gauge * tau * tau,
                                       1e-2 * body.mass * body.q_s_fixed[0] * body.q_s_fixed[0]);
   }
   if (body.level != DeformLevel::rigid) body.s_fixed.clear();

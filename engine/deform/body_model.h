@@ -45,7 +45,7 @@ struct BodyModel {
   VecX q_s0;                     // rest values (3.31), before tracks (n_shape)
   VecX k_s;                      // global stiffness diag (3.32) (n_shape)
   Real parameter_inertia = 0;    // eta of the gauge direction, see deform/body_dynamics.h
-  VecX parameter_inertia_floor;  // eta_i = k_s,i dt^2 added to M_ss's diagonal (n_s)
+  VecX parameter_inertia_floor;  // eta_i = k_s,i tau^2 added to M_ss's diagonal (n_s)
   std::vector<Vec3> s_fixed;     // rigid bodies: reference shape at each node (constant)
   Tessellation tessellation;
   std::vector<SuperquadricAngles> node_angles;  // superquadric_angles(u_i, v_i) per node
@@ -103,9 +103,10 @@ struct SpringModel {
 };
 
 // Compiles one body: tessellation, membrane stiffness, contact samples, masses, the inertia of
-// the gauge direction (sized on the substep dt). Throws pbm::Error(file, path + ...) when the
+// the gauge direction and the shape parameters' floor (sized on the time scale tau,
+// solver.shape_inertia_time or solver.dt). Throws pbm::Error(file, path + ...) when the
 // definition cannot be compiled; q_offset and v_offset are left 0 for the caller to place.
-BodyModel build_body_model(const BodyDef& def, Real dt, const std::string& file,
+BodyModel build_body_model(const BodyDef& def, Real inertia_time, const std::string& file,
                            const std::string& path);
 
 }  // namespace pbm

@@ -30,7 +30,12 @@ StabilityLimit explicit_stability_limit(const BodyModel& body, int iterations) {
     }
     limit.omega = std::sqrt(std::max(rayleigh, 0.0));
   }
-  const Real nu = body.damping, w2 = limit.omega * limit.omega;
+  for (int i = 0; i < body.n_s; ++i) {
+    const Real eta = body.parameter_inertia_floor[i];
+    if (eta > 0) limit.omega_shape = std::max(limit.omega_shape, std::sqrt(body.k_s[i] / eta));
+  }
+  const Real w = std::max(limit.omega, limit.omega_shape);
+  const Real nu = body.damping, w2 = w * w;
   // First order (3.51): nu M q-dot = -K q decays at omega^2 / nu, a pure damper's rate.
   limit.lambda = body.order == DynamicsOrder::second ? 0.5 * nu + std::sqrt(0.25 * nu * nu + w2)
                  : nu > 0                            ? w2 / nu
@@ -38,6 +43,12 @@ StabilityLimit explicit_stability_limit(const BodyModel& body, int iterations) {
   const Real inf = std::numeric_limits<Real>::infinity();
   limit.dt_euler = limit.lambda > 0 ? 2.0 / limit.lambda : inf;
   limit.dt_rk4 = limit.lambda > 0 ? 2.78 / limit.lambda : inf;
+  const Real ws2 = limit.omega_shape * limit.omega_shape;
+  const Real lambda_shape = body.order == DynamicsOrder::second
+                                ? 0.5 * nu + std::sqrt(0.25 * nu * nu + ws2)
+                            : nu > 0 ? ws2 / nu
+                                     : 0.0;
+  limit.dt_implicit = lambda_shape > 0 ? 2.0 / lambda_shape : inf;
   return limit;
 }
 

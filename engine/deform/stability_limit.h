@@ -5,8 +5,9 @@
 // dt lambda < 2, lambda = nu / 2 + sqrt(nu^2 / 4 + omega^2) (the undamped oscillator's
 // omega dt < 2 and the pure damper's nu dt < 2 are its ends); classic RK4 while dt lambda < 2.78
 // (its stability boundary on the imaginary axis is 2 sqrt 2). A first-order body (3.51) decays
-// its mode at lambda = omega^2 / nu, under the same bounds. The global block needs no limit:
-// its parameter inertia floor k_s dt^2 keeps omega_s dt < 1 at any dt (deform/body_model.h).
+// its mode at lambda = omega^2 / nu, under the same bounds. The global block's fastest mode is
+// at most omega_s = max_i sqrt(k_i / eta_i) = 1 / tau: its inertia floor eta_i = k_i tau^2
+// bounds M_ss from below (deform/body_model.h); with tau = dt (the default) it never limits.
 #pragma once
 
 #include "core/types.h"
@@ -16,10 +17,15 @@ namespace pbm {
 struct BodyModel;
 
 struct StabilityLimit {
-  Real omega = 0;   // fastest membrane mode [rad/s]; 0 without local displacements
-  Real lambda = 0;  // nu / 2 + sqrt(nu^2 / 4 + omega^2), first order omega^2 / nu [1/s]
+  Real omega = 0;        // fastest membrane mode [rad/s]; 0 without local displacements
+  Real omega_shape = 0;  // bound on the global block's fastest mode, 1 / tau [rad/s]; 0 without
+  // nu / 2 + sqrt(nu^2 / 4 + w^2), first order w^2 / nu, w = max(omega, omega_shape) [1/s]
+  Real lambda = 0;
   // Largest stable step of the book's Euler and of RK4 [s] (infinite when nothing limits it).
   Real dt_euler = 0, dt_rk4 = 0;
+  // The implicit integrator's: Euler's limit on the global block alone (the membrane is taken
+  // implicitly, deform/implicit_membrane.h).
+  Real dt_implicit = 0;
 };
 
 // Power iteration on M^-1 K_dd: `iterations` products, started from an alternating pattern that

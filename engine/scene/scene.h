@@ -29,7 +29,10 @@ struct TrackDef {
 struct SolverDef {
   Real dt = 0.001;  // substep [s], > 0
   IntegratorKind integrator = IntegratorKind::euler;
-  Real tolerance = 1e-6;                // rk45 local error tolerance, > 0
+  Real tolerance = 1e-6;  // rk45 local error tolerance, > 0
+  // Time scale tau of the shape parameters' inertia floor eta_i = k_s,i tau^2 [s], > 0 (absent:
+  // dt). Part of the model, not of the step: fixed, it leaves dt a knob that converges.
+  std::optional<Real> shape_inertia_time;
   Real fps = 30.0;                      // frames per second of the timeline, > 0
   Real duration = 10.0;                 // default length of a run [s], > 0
   bool contact_step_reduction = false;  // end of sec. 5.2.2

@@ -15,6 +15,13 @@ constexpr auto kSolverFields = std::to_array<Field<SolverDef>>({
         {.key = "integrator", .description = "Time integrator."}),
     value<&SolverDef::tolerance>(
         {.key = "tolerance", .range = kPositive, .description = "rk45 local error tolerance."}),
+    value<&SolverDef::shape_inertia_time>(
+        {.key = "shape_inertia_time",
+         .unit = "s",
+         .range = kPositive,
+         .default_note = "dt",
+         .description = "Time scale tau of the shape parameters' inertia floor k_s tau^2; fixed, "
+                        "dt can be refined without changing the model."}),
     value<&SolverDef::fps>({.key = "fps",
                             .unit = "1/s",
                             .range = kPositive,

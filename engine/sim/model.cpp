@@ -40,15 +40,12 @@ TrackModel build_track(const Scene& scene, int t) {
 
 // Shortens the substep below every body's explicit stability limit for the configured
 // integrator (sec. 6.1; deform/stability_limit.h), with 10% to spare, and says so in the notes:
-// a step past the limit grows the fastest membrane mode by a factor every step, an explosion the
-// stability guard sees only once it is large. rk45 adapts its own steps and needs no limit.
+// a step past the limit grows the fastest mode by a factor every step, an explosion the
+// stability guard sees only once it is large. rk45 adapts its own steps and needs no limit; the
+// implicit integrator takes the membrane at the step's end and needs only the global block's.
 void limit_substep(Model& model) {
   model.substep = model.solver.dt;
-  // rk45 adapts its own steps; the implicit integrator takes the membrane at the step's end,
-  // stable at any step (deform/implicit_membrane.h).
-  if (model.solver.integrator == IntegratorKind::rk45 ||
-      model.solver.integrator == IntegratorKind::implicit)
-    return;
+  if (model.solver.integrator == IntegratorKind::rk45) return;
   constexpr Real kSafety = 0.9;
   // The substep the frames take at solver.dt: a frame is divided into equal substeps.
   const Real frame = 1.0 / model.solver.fps;
@@ -56,8 +53,10 @@ void limit_substep(Model& model) {
   const BodyModel* limiting = nullptr;
   Real limit = taken;
   for (const BodyModel& body : model.bodies) {
-    const Real stable = model.solver.integrator == IntegratorKind::euler ? body.stability.dt_euler
-                                                                         : body.stability.dt_rk4;
+    const IntegratorKind kind = model.solver.integrator;
+    const Real stable = kind == IntegratorKind::euler      ? body.stability.dt_euler
+                        : kind == IntegratorKind::implicit ? body.stability.dt_implicit
+                                                           : body.stability.dt_rk4;
     if (kSafety * stable < limit) {
       limit = kSafety * stable;
       limiting = &body;
@@ -65,13 +64,24 @@ void limit_substep(Model& model) {
   }
   if (limiting == nullptr) return;
   model.substep = limit;
-  char note[320];
-  std::snprintf(note, sizeof note,
-                "body '%s': the substep %.3g s (solver.dt %g s) is past its explicit stability "
-                "limit %.3g s (fastest membrane mode %.4g rad/s, damping %g 1/s); substeps "
-                "shortened to %.3g s",
-                limiting->name.c_str(), taken, model.solver.dt, limit / kSafety,
-                limiting->stability.omega, limiting->damping, limit);
+  char note[400];
+  const StabilityLimit& s = limiting->stability;
+  if (s.omega >= s.omega_shape && model.solver.integrator != IntegratorKind::implicit) {
+    std::snprintf(note, sizeof note,
+                  "body '%s': the substep %.3g s (solver.dt %g s) is past its explicit stability "
+                  "limit %.3g s (fastest membrane mode %.4g rad/s, damping %g 1/s); substeps "
+                  "shortened to %.3g s",
+                  limiting->name.c_str(), taken, model.solver.dt, limit / kSafety, s.omega,
+                  limiting->damping, limit);
+  } else {
+    std::snprintf(note, sizeof note,
+                  "body '%s': the substep %.3g s (solver.dt %g s) is past the explicit stability "
+                  "limit %.3g s of its shape parameters (inertia floor k_s tau^2, "
+                  "solver.shape_inertia_time %g s: modes up to %.4g rad/s); substeps shortened "
+                  "to %.3g s",
+                  limiting->name.c_str(), taken, model.solver.dt, limit / kSafety,
+                  1.0 / s.omega_shape, s.omega_shape, limit);
+  }
   model.notes += (model.notes.empty() ? "" : "; ") + std::string(note);
 }
 
@@ -84,7 +94,9 @@ Model build_model(const Scene& scene) {
   model.solver = scene.solver;
   if (scene.bodies.empty()) throw Error(scene.file, "bodies", "needs at least one body");
   for (int b = 0; b < static_cast<int>(scene.bodies.size()); ++b) {
-    BodyModel body = build_body_model(scene.bodies[b], scene.solver.dt, scene.file, body_path(b));
+    BodyModel body =
+        build_body_model(scene.bodies[b], scene.solver.shape_inertia_time.value_or(scene.solver.dt),
+                         scene.file, body_path(b));
     body.q_offset = model.n_q;
     body.v_offset = model.n_v;
     model.n_q += body.q_size;

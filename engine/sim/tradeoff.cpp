@@ -1,0 +1,266 @@
+#include "sim/tradeoff.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/error.h"
+#include "sim/simulation.h"
+
+namespace pbm {
+namespace {
+
+const char* integrator_name(IntegratorKind kind) {
+  switch (kind) {
+    case IntegratorKind::euler:
+      return "euler";
+    case IntegratorKind::rk4:
+      return "rk4";
+    case IntegratorKind::rk45:
+      return "rk45";
+    case IntegratorKind::implicit:
+      return "implicit";
+  }
+  return "?";
+}
+
+// What a run leaves to compare, frame by frame.
+struct Trajectory {
+  std::vector<std::vector<Vec3>> centres;  // [frame][body]
+  std::vector<std::vector<VecX>> shapes;   // [frame][body]
+  std::vector<VecX> nodes;                 // [frame]: every body's node positions, in order
+  std::vector<Real> total_energy;          // [frame]
+  Real largest_energy = 0;                 // kinetic + elastic over frames
+  Real violation = 0;
+  double wall_seconds = 0;
+  long substeps = 0, evaluations = 0, retries = 0;
+  bool ok = true;
+  std::string message;
+};
+
+Trajectory record(const Scene& scene, Real seconds, const std::atomic<bool>* cancel) {
+  Trajectory t;
+  try {
+    Simulation sim(scene);
+    const int frames = std::max(1, static_cast<int>(std::lround(seconds * sim.model.solver.fps)));
+    for (int f = 0; f < frames; ++f) {
+      const FrameResult r = advance_frame(sim);
+      if (!r.ok) {
+        t.ok = false;
+        t.message = "frame " + std::to_string(f + 1) + ": " + r.message;
+        return t;
+      }
+      const FrameStats& s = sim.stats;
+      t.wall_seconds += s.wall_seconds;
+      t.substeps += s.substeps;
+      t.evaluations += s.evaluations;
+      t.retries += s.retries;
+      t.violation = std::max(t.violation, s.constraint_violation);
+      t.total_energy.push_back(s.kinetic + s.elastic + s.potential);
+      t.largest_energy = std::max(t.largest_energy, s.kinetic + s.elastic);
+      std::vector<Vec3> centres;
+      std::vector<VecX> shapes;
+      std::size_t count = 0;
+      for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+        centres.push_back(s.bodies[b].position);
+        shapes.push_back(s.bodies[b].q_s);
+        count += sim.ws.bodies[b].x.size();
+      }
+      // measure_state leaves the bodies' kinematics of the frame's end in the workspace.
+      VecX nodes(3 * static_cast<Eigen::Index>(count));
+      Eigen::Index at = 0;
+      for (const BodyWorkspace& bw : sim.ws.bodies) {
+        for (const Vec3& x : bw.x) {
+          nodes.segment<3>(at) = x;
+          at += 3;
+        }
+      }
+      t.centres.push_back(std::move(centres));
+      t.shapes.push_back(std::move(shapes));
+      t.nodes.push_back(std::move(nodes));
+      if (cancel && cancel->load()) {
+        t.ok = false;
+        t.message = "cancelled";
+        return t;
+      }
+    }
+  } catch (const Error& e) {
+    t.ok = false;
+    t.message = e.what();
+  }
+  return t;
+}
+
+void compare(const Trajectory& run, const Trajectory& ref, TradeoffPoint& point) {
+  const std::size_t frames = std::min(run.centres.size(), ref.centres.size());
+  Real node_sum = 0;
+  std::size_t node_count = 0;
+  bool nodes_match = true;
+  const Real scale = std::max(ref.largest_energy, 1e-12);
+  for (std::size_t f = 0; f < frames; ++f) {
+    for (std::size_t b = 0; b < run.centres[f].size() && b < ref.centres[f].size(); ++b) {
+      point.centre_error =
+          std::max(point.centre_error, (run.centres[f][b] - ref.centres[f][b]).norm());
+      if (run.shapes[f][b].size() == ref.shapes[f][b].size() && run.shapes[f][b].size() > 0) {
+        point.shape_error = std::max(point.shape_error,
+                                     (run.shapes[f][b] - ref.shapes[f][b]).cwiseAbs().maxCoeff());
+      }
+    }
+    if (run.nodes[f].size() == ref.nodes[f].size()) {
+      node_sum += (run.nodes[f] - ref.nodes[f]).squaredNorm();
+      node_count += static_cast<std::size_t>(run.nodes[f].size() / 3);
+    } else {
+      nodes_match = false;
+    }
+    point.energy_error =
+        std::max(point.energy_error, std::abs(run.total_energy[f] - ref.total_energy[f]) / scale);
+  }
+  point.node_rms = nodes_match && node_count > 0 ? std::sqrt(node_sum / node_count) : -1;
+}
+
+}  // namespace
+
+std::string TradeoffSetting::label() const {
+  char text[160];
+  if (integrator == IntegratorKind::rk45) {
+    std::snprintf(text, sizeof text, "rk45 tol %g dt %g res %gx", tolerance, dt, resolution);
+  } else {
+    std::snprintf(text, sizeof text, "%s dt %g res %gx", integrator_name(integrator), dt,
+                  resolution);
+  }
+  return text;
+}
+
+TradeoffKnobs default_knobs(const Scene& scene, const std::vector<std::string>& names,
+                            std::vector<std::string>& notes) {
+  TradeoffKnobs knobs;
+  const Real frame = 1.0 / scene.solver.fps;
+  const Real dt0 = std::min(scene.solver.dt, frame);
+  knobs.dt = {dt0};
+  knobs.integrators = {scene.solver.integrator};
+  knobs.tolerances = {scene.solver.tolerance};
+  knobs.resolutions = {1.0};
+  for (const std::string& name : names) {
+    if (name == "dt") {
+      knobs.dt.clear();
+      for (Real factor : {2.0, 1.0, 0.5, 0.25}) {
+        const Real dt = std::min(factor * dt0, frame);
+        if (std::find(knobs.dt.begin(), knobs.dt.end(), dt) == knobs.dt.end())
+          knobs.dt.push_back(dt);
+      }
+    } else if (name == "integrator") {
+      knobs.integrators = {IntegratorKind::euler, IntegratorKind::rk4, IntegratorKind::implicit};
+      if (scene.solver.integrator == IntegratorKind::rk45)
+        knobs.integrators.push_back(IntegratorKind::rk45);
+    } else if (name == "tolerance") {
+      knobs.tolerances = {1e-3, 1e-4, 1e-5};
+      if (std::find(knobs.integrators.begin(), knobs.integrators.end(), IntegratorKind::rk45) ==
+          knobs.integrators.end())
+        knobs.integrators.push_back(IntegratorKind::rk45);
+    } else if (name == "resolution") {
+      bool per_node = false;
+      for (const BodyDef& body : scene.bodies) per_node |= body.material.nodal_mass > 0;
+      if (per_node) {
+        notes.push_back(
+            "resolution left out: a body's mass is given per node (nodal_mass), so refining its "
+            "mesh adds mass (scenes/README.md, \"Materials that converge\")");
+      } else {
+        knobs.resolutions = {0.5, 1.0, 2.0};
+      }
+    } else {
+      throw Error("", "--knobs",
+                  "unknown knob '" + name + "' (dt, integrator, tolerance, resolution)");
+    }
+  }
+  return knobs;
+}
+
+Scene apply_setting(const Scene& scene, const TradeoffSetting& setting) {
+  Scene s = scene;
+  // The model stays the scene's: the shape parameters' inertia floor keeps its time scale while
+  // dt moves (deform/body_model.h), so the sweep measures the step, not another model.
+  s.solver.shape_inertia_time = scene.solver.shape_inertia_time.value_or(scene.solver.dt);
+  s.solver.dt = setting.dt;
+  s.solver.integrator = setting.integrator;
+  s.solver.tolerance = setting.tolerance;
+  for (BodyDef& body : s.bodies) {
+    TessellationDef& t = body.tessellation;
+    t.rings = std::max(2, static_cast<int>(std::lround(t.rings * setting.resolution)));
+    t.segments = std::max(3, static_cast<int>(std::lround(t.segments * setting.resolution)));
+  }
+  return s;
+}
+
+TradeoffReport run_tradeoff(const Scene& scene, const TradeoffOptions& options,
+                            TradeoffProgress progress, const std::atomic<bool>* cancel) {
+  TradeoffReport report;
+  const TradeoffKnobs& k = options.knobs;
+  std::vector<TradeoffSetting> settings;
+  for (Real resolution : k.resolutions)
+    for (IntegratorKind integrator : k.integrators) {
+      const bool adaptive = integrator == IntegratorKind::rk45;
+      for (Real tolerance : adaptive ? k.tolerances : std::vector<Real>{scene.solver.tolerance})
+        for (Real dt : k.dt) {
+          TradeoffSetting s{dt, integrator, tolerance, resolution, false};
+          s.current = resolution == 1.0 && integrator == scene.solver.integrator &&
+                      dt == std::min(scene.solver.dt, 1.0 / scene.solver.fps) &&
+                      (!adaptive || tolerance == scene.solver.tolerance);
+          settings.push_back(s);
+        }
+    }
+  report.reference =
+      TradeoffSetting{*std::min_element(k.dt.begin(), k.dt.end()), IntegratorKind::rk45,
+                      options.reference_tolerance,
+                      *std::max_element(k.resolutions.begin(), k.resolutions.end()), false};
+  const int total = static_cast<int>(settings.size()) + 1;
+  progress(0, total, "reference: " + report.reference.label());
+  const Trajectory ref = record(apply_setting(scene, report.reference), options.seconds, cancel);
+  report.reference_wall_seconds = ref.wall_seconds;
+  if (!ref.ok) {
+    if (cancel && cancel->load()) {
+      report.cancelled = true;
+      return report;
+    }
+    throw Error(scene.file, "solver",
+                "the reference run (" + report.reference.label() + ") failed: " + ref.message);
+  }
+  for (std::size_t i = 0; i < settings.size(); ++i) {
+    if (cancel && cancel->load()) {
+      report.cancelled = true;
+      break;
+    }
+    progress(static_cast<int>(i) + 1, total, settings[i].label());
+    const Trajectory run = record(apply_setting(scene, settings[i]), options.seconds, cancel);
+    TradeoffPoint point;
+    point.setting = settings[i];
+    point.ok = run.ok;
+    point.message = run.message;
+    point.wall_seconds = run.wall_seconds;
+    point.substeps = run.substeps;
+    point.evaluations = run.evaluations;
+    point.retries = run.retries;
+    point.constraint_violation = run.violation;
+    if (run.ok) compare(run, ref, point);
+    report.points.push_back(point);
+  }
+  mark_pareto_front(report.points);
+  return report;
+}
+
+void mark_pareto_front(std::vector<TradeoffPoint>& points) {
+  for (TradeoffPoint& p : points) {
+    p.pareto = p.ok;
+    if (!p.ok) continue;
+    for (const TradeoffPoint& q : points) {
+      if (&q == &p || !q.ok) continue;
+      const bool no_worse = q.wall_seconds <= p.wall_seconds && q.centre_error <= p.centre_error;
+      const bool better = q.wall_seconds < p.wall_seconds || q.centre_error < p.centre_error;
+      if (no_worse && better) {
+        p.pareto = false;
+        break;
+      }
+    }
+  }
+}
+
+}  // namespace pbm

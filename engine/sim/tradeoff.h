@@ -1,0 +1,85 @@
+// The measured trade of speed for accuracy (docs/architecture.md, "The measured trade"): a
+// converged reference run of a scene, then a sweep of its knobs (substep, integrator, rk45
+// tolerance, mesh resolution), each run's error against the reference at matched frame times
+// and its cost. `pbm bench tradeoff` writes it as CSV and a plot; the studio's trade panel shows
+// the same numbers for the open scene. Later subsystems add their error columns here (figure
+// joint angles, liquid volume).
+#pragma once
+
+#include <atomic>
+#include <string>
+#include <vector>
+
+#include "core/function_ref.h"
+#include "scene/scene.h"
+
+namespace pbm {
+
+// One point of the sweep: the knobs as set.
+struct TradeoffSetting {
+  Real dt = 0;  // solver.dt [s]
+  IntegratorKind integrator = IntegratorKind::euler;
+  Real tolerance = 0;    // solver.tolerance (rk45)
+  Real resolution = 1;   // rings and segments of every body, times this
+  bool current = false;  // the scene's own setting
+  std::string label() const;
+};
+
+// Errors against the reference over the run's frames (largest over frames and bodies) and cost.
+struct TradeoffPoint {
+  TradeoffSetting setting;
+  bool ok = false;
+  std::string message;      // why the run failed
+  double wall_seconds = 0;  // stepping only (FrameStats::wall_seconds)
+  long substeps = 0, evaluations = 0, retries = 0;
+  Real centre_error = 0;          // |c - c_ref| [m]
+  Real shape_error = 0;           // |q_s - q_s,ref| (max norm)
+  Real node_rms = -1;             // RMS of node position differences [m]; -1: other node count
+  Real constraint_violation = 0;  // the run's own max |C| [m]
+  Real energy_error = 0;          // |E - E_ref| / the reference's largest kinetic + elastic energy
+  bool pareto = false;            // no other point is both faster and more accurate (centre error)
+};
+
+struct TradeoffKnobs {
+  std::vector<Real> dt;
+  std::vector<IntegratorKind> integrators;  // rk45 runs once per tolerance
+  std::vector<Real> tolerances;
+  std::vector<Real> resolutions;
+};
+
+struct TradeoffOptions {
+  Real seconds = 2;  // simulated time of every run
+  Real reference_tolerance = 1e-7;
+  TradeoffKnobs knobs;
+};
+
+struct TradeoffReport {
+  TradeoffSetting reference;
+  double reference_wall_seconds = 0;
+  std::vector<TradeoffPoint> points;
+  std::vector<std::string> notes;  // knobs left out and why
+  bool cancelled = false;
+};
+
+// The knobs named (dt, integrator, tolerance, resolution) at values around the scene's: dt at
+// 2, 1, 1/2, 1/4 times the scene's (at most a frame), euler, rk4 and implicit, rk45 at 1e-3,
+// 1e-4, 1e-5, resolution 1/2, 1 and 2 times. Resolution is left out (with a note) when a body's
+// mass is given per node (`nodal_mass`): refining it changes the physics. Throws pbm::Error
+// naming an unknown knob.
+TradeoffKnobs default_knobs(const Scene& scene, const std::vector<std::string>& names,
+                            std::vector<std::string>& notes);
+
+// The scene with a setting's knobs applied.
+Scene apply_setting(const Scene& scene, const TradeoffSetting& setting);
+
+// The reference (rk45 at options.reference_tolerance, the smallest dt and the finest resolution
+// of the sweep), then every setting of the sweep. progress(done, total, label) is called before
+// each run; `cancel`, when set, stops the sweep after the run in progress (report.cancelled).
+using TradeoffProgress = FunctionRef<void(int done, int total, const std::string& label)>;
+TradeoffReport run_tradeoff(const Scene& scene, const TradeoffOptions& options,
+                            TradeoffProgress progress, const std::atomic<bool>* cancel = nullptr);
+
+// Marks the points no other successful point beats in both wall time and centre error.
+void mark_pareto_front(std::vector<TradeoffPoint>& points);
+
+}  // namespace pbm
