@@ -121,5 +121,21 @@ TEST(StudioSmoke, TheSceneCameraPlaysItsTrack) {
   EXPECT_NEAR(r.report["camera"][1].get<double>(), -30.0, 1e-4);  // the scene's, untracked
 }
 
+// The speed-vs-accuracy panel in the real window: Measure runs the sweep beside the playing
+// engine thread, and Apply on the front's most accurate point sets the scene's solver, keeping
+// the model the sweep measured (shape_inertia_time at the scene's dt).
+TEST(StudioSmoke, TheTradePanelMeasuresTheSceneAndAppliesAPointOfItsFront) {
+  const SmokeResult r =
+      smoke("tradeoff", "--tradeoff 0.5", std::string(PBM_SOURCE_DIR) + "/scenes/jello-ball.json");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const nlohmann::json& t = r.report["tradeoff"];
+  std::printf("trade panel: %s\n", t.dump().c_str());
+  EXPECT_EQ(t["points"], 9);  // dt 0.031, 0.0155, 0.00775 (2x is past the frame) x 3 integrators
+  EXPECT_EQ(t["ok"], 9);
+  EXPECT_GE(t["front"].get<int>(), 2);
+  EXPECT_LT(t["solver_dt"].get<double>(), 0.031);  // the most accurate point is not the scene's
+  EXPECT_DOUBLE_EQ(t["shape_inertia_time"].get<double>(), 0.031);
+}
+
 }  // namespace
 }  // namespace pbm

@@ -334,7 +334,207 @@ void timeline(Studio& studio, StudioActions& actions, const json& scene) {
   }
 }
 
+const char* integrator_label(IntegratorKind kind) {
+  switch (kind) {
+    case IntegratorKind::euler:
+      return "euler";
+    case IntegratorKind::rk4:
+      return "rk4";
+    case IntegratorKind::rk45:
+      return "rk45";
+    case IntegratorKind::implicit:
+      return "implicit";
+  }
+  return "?";
+}
+
+ImU32 integrator_color(IntegratorKind kind) {
+  switch (kind) {
+    case IntegratorKind::euler:
+      return IM_COL32(80, 140, 235, 255);
+    case IntegratorKind::rk4:
+      return IM_COL32(70, 190, 100, 255);
+    case IntegratorKind::rk45:
+      return IM_COL32(180, 100, 220, 255);
+    case IntegratorKind::implicit:
+      return IM_COL32(240, 160, 40, 255);
+  }
+  return IM_COL32_WHITE;
+}
+
+// Centre error against wall time on log-log axes (the plot of `pbm bench tradeoff`): points by
+// integrator, the Pareto front, the scene's setting ringed; hovering shows a point's numbers and
+// a click selects it.
+void tradeoff_plot(Studio::Tradeoff& t) {
+  const TradeoffReport& r = *t.report;
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  const ImVec2 size(ImGui::GetContentRegionAvail().x, 240);
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  draw->AddRectFilled(origin, ImVec2(origin.x + size.x, origin.y + size.y),
+                      IM_COL32(25, 25, 30, 255));
+  double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+  auto xy = [](const TradeoffPoint& p) {
+    return std::array<double, 2>{std::log10(std::max(p.wall_seconds, 1e-6)),
+                                 std::log10(std::max(p.centre_error, 1e-12))};
+  };
+  for (const TradeoffPoint& p : r.points) {
+    if (!p.ok) continue;
+    const auto v = xy(p);
+    for (int a = 0; a < 2; ++a) {
+      lo[a] = std::min(lo[a], v[a]);
+      hi[a] = std::max(hi[a], v[a]);
+    }
+  }
+  if (lo[0] > hi[0]) {
+    ImGui::TextUnformatted("no run succeeded");
+    return;
+  }
+  for (int a = 0; a < 2; ++a) {
+    lo[a] = std::floor(lo[a]);
+    hi[a] = std::max(std::ceil(hi[a]), lo[a] + 1);
+  }
+  const float left = 44, bottom = 18, pad = 8;
+  auto to_screen = [&](const std::array<double, 2>& v) {
+    return ImVec2(
+        origin.x + left +
+            static_cast<float>((v[0] - lo[0]) / (hi[0] - lo[0])) * (size.x - left - pad),
+        origin.y + pad +
+            static_cast<float>((hi[1] - v[1]) / (hi[1] - lo[1])) * (size.y - bottom - pad));
+  };
+  char text[32];
+  for (int e = static_cast<int>(lo[0]); e <= static_cast<int>(hi[0]); ++e) {
+    const ImVec2 a = to_screen({static_cast<double>(e), lo[1]});
+    const ImVec2 b = to_screen({static_cast<double>(e), hi[1]});
+    draw->AddLine(a, b, IM_COL32(60, 60, 70, 255));
+    std::snprintf(text, sizeof text, "1e%d s", e);
+    draw->AddText(ImVec2(a.x - 12, a.y + 2), IM_COL32(170, 170, 170, 255), text);
+  }
+  for (int e = static_cast<int>(lo[1]); e <= static_cast<int>(hi[1]); ++e) {
+    const ImVec2 a = to_screen({lo[0], static_cast<double>(e)});
+    const ImVec2 b = to_screen({hi[0], static_cast<double>(e)});
+    draw->AddLine(a, b, IM_COL32(60, 60, 70, 255));
+    std::snprintf(text, sizeof text, "1e%d m", e);
+    draw->AddText(ImVec2(origin.x + 2, a.y - 7), IM_COL32(170, 170, 170, 255), text);
+  }
+  std::vector<ImVec2> front;
+  std::vector<std::pair<double, ImVec2>> sorted;
+  for (const TradeoffPoint& p : r.points) {
+    if (p.ok && p.pareto) sorted.emplace_back(p.wall_seconds, to_screen(xy(p)));
+  }
+  std::sort(sorted.begin(), sorted.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& [w, s] : sorted) front.push_back(s);
+  if (front.size() > 1) {
+    draw->AddPolyline(front.data(), static_cast<int>(front.size()), IM_COL32(230, 230, 230, 255), 0,
+                      1.5f);
+  }
+  const ImVec2 mouse = ImGui::GetIO().MousePos;
+  int hovered = -1;
+  float nearest = 7;
+  for (std::size_t i = 0; i < r.points.size(); ++i) {
+    const TradeoffPoint& p = r.points[i];
+    if (!p.ok) continue;
+    const ImVec2 s = to_screen(xy(p));
+    draw->AddCircleFilled(s, 2.5f + 1.5f * static_cast<float>(std::sqrt(p.setting.resolution)),
+                          integrator_color(p.setting.integrator));
+    if (p.setting.current) draw->AddCircle(s, 8, IM_COL32(235, 60, 60, 255), 0, 2);
+    if (static_cast<int>(i) == t.selected) draw->AddCircle(s, 8, IM_COL32_WHITE, 0, 1.5f);
+    const float d = std::hypot(mouse.x - s.x, mouse.y - s.y);
+    if (d < nearest) {
+      nearest = d;
+      hovered = static_cast<int>(i);
+    }
+  }
+  ImGui::InvisibleButton("##tradeoff-plot", size);
+  if (hovered >= 0 && ImGui::IsItemHovered()) {
+    const TradeoffPoint& p = r.points[hovered];
+    ImGui::SetTooltip(
+        "%s\nwall %.4f s, %ld substeps\ncentre %.3g m, q_s %.3g\nnodes rms %.3g m, energy %.3g",
+        p.setting.label().c_str(), p.wall_seconds, p.substeps, p.centre_error, p.shape_error,
+        p.node_rms, p.energy_error);
+    if (ImGui::IsItemClicked()) t.selected = hovered;
+  }
+  for (IntegratorKind k : {IntegratorKind::euler, IntegratorKind::rk4, IntegratorKind::implicit,
+                           IntegratorKind::rk45}) {
+    ImGui::ColorButton(integrator_label(k), ImColor(integrator_color(k)),
+                       ImGuiColorEditFlags_NoTooltip, ImVec2(10, 10));
+    ImGui::SameLine();
+    ImGui::Text("%s", integrator_label(k));
+    ImGui::SameLine();
+  }
+  ImGui::TextDisabled("(red ring: the scene's setting; size: resolution)");
+}
+
+// The speed-versus-accuracy panel (docs/architecture.md, "The measured trade").
+void tradeoff_panel(Studio& studio, StudioActions& actions) {
+  Studio::Tradeoff& t = studio.tradeoff;
+  if (std::optional<TradeoffReport> report = t.job->take_report()) {
+    t.report = std::move(report);
+    t.selected = -1;
+  }
+  const TradeoffProgressView p = t.job->progress();
+  ImGui::SetNextItemWidth(80);
+  ImGui::InputFloat("s per run", &t.seconds, 0, 0, "%.2f");
+  t.seconds = std::clamp(t.seconds, 0.1f, 60.0f);
+  ImGui::SameLine();
+  ImGui::Checkbox("dt", &t.dt);
+  ImGui::SameLine();
+  ImGui::Checkbox("integrator", &t.integrator);
+  ImGui::SameLine();
+  ImGui::Checkbox("tolerance", &t.tolerance);
+  ImGui::SameLine();
+  ImGui::Checkbox("resolution", &t.resolution);
+  if (p.running) {
+    const float fraction = p.total > 0 ? static_cast<float>(p.done) / p.total : 0.0f;
+    ImGui::ProgressBar(fraction, ImVec2(-80, 0), p.label.c_str());
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel")) t.job->cancel();
+  } else if (studio.status.scene) {
+    if (ImGui::Button("Measure")) {
+      std::vector<std::string> knobs;
+      if (t.dt) knobs.push_back("dt");
+      if (t.integrator) knobs.push_back("integrator");
+      if (t.tolerance) knobs.push_back("tolerance");
+      if (t.resolution) knobs.push_back("resolution");
+      t.revision = studio.status.scene_revision;
+      t.job->start(*studio.status.scene, knobs, t.seconds);
+    }
+    const std::string error = t.job->error();
+    if (!error.empty()) {
+      ImGui::SameLine();
+      ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", error.c_str());
+    }
+  }
+  for (const std::string& note : t.job->notes()) ImGui::TextWrapped("%s", note.c_str());
+  if (!t.report) return;
+  const TradeoffReport& r = *t.report;
+  ImGui::Text("reference %s: %.2f s of wall time", r.reference.label().c_str(),
+              r.reference_wall_seconds);
+  if (studio.status.scene_revision != t.revision) {
+    ImGui::TextDisabled("the scene changed since this was measured");
+  }
+  tradeoff_plot(t);
+  // The front (and a selected point off it), each with the button that applies it.
+  ImGui::Separator();
+  for (std::size_t i = 0; i < r.points.size(); ++i) {
+    const TradeoffPoint& q = r.points[i];
+    if (!q.ok || (!q.pareto && static_cast<int>(i) != t.selected)) continue;
+    ImGui::PushID(static_cast<int>(i));
+    if (ImGui::SmallButton("Apply") && studio.status.scene) {
+      const std::string error = actions.edit(
+          "", scene_with_setting(*studio.status.scene, q.setting), "apply " + q.setting.label());
+      if (!error.empty()) studio.message = error;
+    }
+    ImGui::SameLine();
+    ImGui::Text("%s%s: %.4f s, centre %.3g m%s", q.setting.label().c_str(),
+                q.setting.current ? " (scene's)" : "", q.wall_seconds, q.centre_error,
+                q.pareto ? "" : " (off the front)");
+    ImGui::PopID();
+  }
+}
+
 void stats(Studio& studio) {
+  if (ImGui::Button("Speed vs accuracy...")) studio.tradeoff.show = true;
   const FrameStats& f = studio.status.stats;
   double total = 0;
   for (int k = 0; k < static_cast<int>(StepStage::count); ++k) {
@@ -350,8 +550,7 @@ void stats(Studio& studio) {
     ImGui::Text("%-15s %8.3f ms", subsystem_name(static_cast<SubsystemId>(k)),
                 1e3 * f.subsystem_seconds[k]);
   }
-  ImGui::Text("%d substeps, %d retries, %d rate evaluations", f.substeps, f.retries,
-              f.evaluations);
+  ImGui::Text("%d substeps, %d retries, %d rate evaluations", f.substeps, f.retries, f.evaluations);
   ImGui::Separator();
   ImGui::Text("kinetic %.4g J  elastic %.4g J  potential %.4g J", f.kinetic, f.elastic,
               f.potential);
@@ -436,6 +635,13 @@ void draw_panels(Studio& studio, StudioActions& actions, float width, float heig
   ImGui::Begin("Stats", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
   stats(studio);
   ImGui::End();
+  if (studio.tradeoff.show) {
+    ImGui::SetNextWindowPos(ImVec2(side + 20, 20), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(600, 480), ImGuiCond_FirstUseEver);
+    ImGui::Begin("Speed vs accuracy", &studio.tradeoff.show);
+    tradeoff_panel(studio, actions);
+    ImGui::End();
+  }
 }
 
 }  // namespace pbm

@@ -10,6 +10,7 @@
 #include "camera.h"
 #include "scene_document.h"
 #include "sim/runner.h"
+#include "tradeoff_job.h"
 
 namespace pbm {
 
@@ -57,6 +58,16 @@ struct Studio {
   std::deque<StatsSample> plot;  // the last seconds
   int last_plotted_frame = -1;
   std::string message;  // last error shown in the status line
+  // The speed-versus-accuracy panel: its sweep in the background and the last report.
+  struct Tradeoff {
+    bool show = false;
+    std::unique_ptr<TradeoffJob> job = std::make_unique<TradeoffJob>();
+    std::optional<TradeoffReport> report;
+    std::uint64_t revision = 0;  // scene revision the report measured
+    float seconds = 2;
+    bool dt = true, integrator = true, tolerance = false, resolution = true;
+    int selected = -1;  // point under the last click
+  } tradeoff;
   bool dirty() const { return status.scene_revision != saved_revision; }
 };
 

@@ -23,13 +23,17 @@ struct SmokeOptions {
   int frames = 0;
   std::optional<QLineF> drag;
   bool overlays = false;  // View > Overlays on
+  // --tradeoff T: after the frames, the speed-vs-accuracy panel measures the scene (dt and
+  // integrator, T s per run) in the background, applies the front's most accurate point, and
+  // the report says what it found and what the scene's solver became.
+  double tradeoff_seconds = 0;
 };
 
 int usage(const char* why) {
   std::cerr << "error: " << why
             << "\nusage: pbm-studio [scene.json]\n"
                "       pbm-studio --smoke <scene.json> --frames N [--drag x0,y0:x1,y1] "
-               "[--overlays] --screenshot out.png [--report out.json]\n";
+               "[--overlays] [--tradeoff SECONDS] --screenshot out.png [--report out.json]\n";
   return 2;
 }
 
@@ -67,7 +71,10 @@ class SmokeRun : public QObject {
       return;
     }
     waited_ = 0;
-    if (requested_ >= options_.frames || requested_ >= s.last_frame) return finish();
+    if (requested_ >= options_.frames || requested_ >= s.last_frame) {
+      if (options_.tradeoff_seconds > 0 && !tradeoff_done()) return;
+      return finish();
+    }
     if (options_.drag) {
       const int begin = options_.frames / 4, end = (3 * options_.frames) / 4;
       const QLineF& d = *options_.drag;
@@ -84,6 +91,53 @@ class SmokeRun : public QObject {
     window_.viewport()->repaint();
     studio.runner->post(pbm::StepFrame{});
     ++requested_;
+  }
+
+  // The trade panel's sweep, driven as a user would: Measure, wait, Apply. True once the applied
+  // scene is the runner's.
+  bool tradeoff_done() {
+    pbm::Studio& studio = window_.studio();
+    pbm::Studio::Tradeoff& t = studio.tradeoff;
+    switch (tradeoff_stage_) {
+      case 0:
+        t.show = true;
+        t.dt = t.integrator = true;
+        t.tolerance = t.resolution = false;
+        t.seconds = static_cast<float>(options_.tradeoff_seconds);
+        t.report.reset();
+        t.job->start(*studio.status.scene, {"dt", "integrator"}, options_.tradeoff_seconds);
+        tradeoff_stage_ = 1;
+        return false;
+      case 1: {
+        // The panel takes the report as soon as it is drawn; so may this.
+        if (auto report = t.job->take_report()) t.report = std::move(report);
+        if (t.job->progress().running) return false;
+        if (!t.report) {
+          fail("the trade-off sweep failed: " + t.job->error());
+          return false;
+        }
+        const pbm::TradeoffPoint* best = nullptr;
+        for (const pbm::TradeoffPoint& p : t.report->points) {
+          if (p.pareto && (!best || p.centre_error < best->centre_error)) best = &p;
+        }
+        if (!best) {
+          fail("the trade-off sweep has no front");
+          return false;
+        }
+        applied_ = best->setting;
+        const std::string error = window_.edit(
+            "", pbm::scene_with_setting(*studio.status.scene, applied_), "apply trade-off point");
+        if (!error.empty()) {
+          fail(error);
+          return false;
+        }
+        tradeoff_stage_ = 2;
+        return false;
+      }
+      default:
+        return studio.status.scene && studio.status.scene->solver.dt == applied_.dt &&
+               studio.status.scene->solver.integrator == applied_.integrator;
+    }
   }
 
   void fail(const std::string& why) {
@@ -116,6 +170,21 @@ class SmokeRun : public QObject {
           report["bodies"].push_back({{"name", body.name}, {"center", {c.x(), c.y(), c.z()}}});
         }
       }
+      const pbm::Studio::Tradeoff& t = window_.studio().tradeoff;
+      if (t.report) {
+        int front = 0, ok = 0;
+        for (const pbm::TradeoffPoint& p : t.report->points) {
+          front += p.pareto;
+          ok += p.ok;
+        }
+        const pbm::Scene& scene = *window_.studio().status.scene;
+        report["tradeoff"] = {{"points", t.report->points.size()},
+                              {"ok", ok},
+                              {"front", front},
+                              {"applied", applied_.label()},
+                              {"solver_dt", scene.solver.dt},
+                              {"shape_inertia_time", scene.solver.shape_inertia_time.value_or(0)}};
+      }
       std::ofstream(options_.report.toStdString()) << report.dump(2) << "\n";
     }
     std::cout << "smoke: " << window_.studio().status.frame << " frames, screenshot "
@@ -127,6 +196,8 @@ class SmokeRun : public QObject {
 
   pbm::MainWindow& window_;
   SmokeOptions options_;
+  int tradeoff_stage_ = 0;
+  pbm::TradeoffSetting applied_;
   QTimer timer_;
   int requested_ = 0;
   int waited_ = 0;  // ticks since the last step was posted
@@ -172,6 +243,11 @@ int main(int argc, char** argv) {
       const QStringList p1 = ends.size() == 2 ? ends[1].split(',') : QStringList();
       if (p0.size() != 2 || p1.size() != 2) return usage("--drag needs x0,y0:x1,y1");
       smoke->drag = QLineF(p0[0].toDouble(), p0[1].toDouble(), p1[0].toDouble(), p1[1].toDouble());
+    } else if (a == "--tradeoff" && smoke) {
+      auto v = value("tradeoff");
+      bool ok = false;
+      smoke->tradeoff_seconds = v ? v->toDouble(&ok) : 0;
+      if (!ok || !(smoke->tradeoff_seconds > 0)) return usage("--tradeoff needs seconds > 0");
     } else if (a == "--overlays" && smoke) {
       smoke->overlays = true;
     } else if (a == "--screenshot" && smoke) {
