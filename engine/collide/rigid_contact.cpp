@@ -372,43 +372,38 @@ namespace {
 // (5.12), as there.
 void resolve_compliant(Obstacles obstacles, const BodyModel& body, Eigen::Ref<VecX> q,
                        Eigen::Ref<VecX> v, BodyWorkspace& ws) {
+  ImplicitMembraneWorkspace& im = ws.implicit;
   const int n = body.n_nodes();
   const int d_q = body.layout.displacement_in_q(), d_v = body.layout.displacement_in_v();
-  std::vector<int> list;
-  std::vector<Vec3> normals;
-  std::vector<Real> amounts;
-  std::vector<int> touching_obstacle(static_cast<std::size_t>(n), -1);
-  std::vector<Vec3> touching_normal(static_cast<std::size_t>(n), Vec3::Zero());
-  VecX change(3 * n), lambda;
-  MatX global;
+  std::fill(im.touching.begin(), im.touching.end(), -1);
   // A node pushed into a second obstacle is taken again in the next pass.
   for (int pass = 0; pass < 4; ++pass) {
-    list.clear();
-    normals.clear();
-    amounts.clear();
+    im.nodes.clear();
+    im.normals.clear();
+    im.amounts.clear();
     for (int i = 0; i < n; ++i) {
       int o;
       Vec3 normal;
       const Real phi = deepest(obstacles, ws.x[i], o, normal);
       if (phi >= kProjectionMargin * 0.5) continue;
-      list.push_back(i);
-      normals.push_back(normal);
-      amounts.push_back(kProjectionMargin - phi);
-      touching_obstacle[i] = o;
-      touching_normal[i] = normal;
+      im.nodes.push_back(i);
+      im.normals.push_back(normal);
+      im.amounts.push_back(kProjectionMargin - phi);
+      im.touching[i] = o;
+      im.touching_normal[i] = normal;
     }
-    if (list.empty()) break;
-    const int m = static_cast<int>(list.size());
-    global.resize(m, m);
+    const int m = static_cast<int>(im.nodes.size());
+    if (m == 0) break;
+    reserve_contact_nodes(body, ws, m);
     for (int r = 0; r < m; ++r)
-      for (int c = 0; c < m; ++c) global(r, c) = normals[r].dot(normals[c]) / body.mass;
-    implicit_node_correction(body, ws, list, normals, amounts, global, change, lambda);
+      for (int c = 0; c < m; ++c) im.global(r, c) = im.normals[r].dot(im.normals[c]) / body.mass;
+    implicit_node_correction(body, ws);
     Vec3 shift = Vec3::Zero();
-    for (int r = 0; r < m; ++r) shift += lambda[r] * normals[r] / body.mass;
+    for (int r = 0; r < m; ++r) shift += im.lambda[r] * im.normals[r] / body.mass;
     position_of(q) += shift;
     const Mat3 Rt = ws.R.transpose();
     for (int i = 0; i < n; ++i) {
-      const Vec3 dx = change.segment<3>(3 * i);
+      const Vec3 dx = im.change.segment<3>(3 * i);
       q.segment<3>(d_q + 3 * i) += Rt * dx;
       ws.x[i] += dx + shift;
     }
@@ -417,42 +412,54 @@ void resolve_compliant(Obstacles obstacles, const BodyModel& body, Eigen::Ref<Ve
   recenter_displacements(body, q, v);
   compute_body_kinematics(body, q, v, ws, false);
   factor_generalized_mass(body, q, ws);
-  list.clear();
-  normals.clear();
-  amounts.clear();
+  im.nodes.clear();
+  im.normals.clear();
+  im.amounts.clear();
   for (int i = 0; i < n; ++i) {
-    const int o = touching_obstacle[i];
+    const int o = im.touching[i];
     if (o < 0) continue;
-    const Vec3& normal = touching_normal[i];
+    const Vec3& normal = im.touching_normal[i];
     const Real vn = (ws.x_dot[i] - obstacles[o].velocity_at(ws.x[i])).dot(normal);
     if (vn >= 0) continue;
-    list.push_back(i);
-    normals.push_back(normal);
-    amounts.push_back(-vn);
+    im.nodes.push_back(i);
+    im.normals.push_back(normal);
+    im.amounts.push_back(-vn);
   }
-  if (list.empty()) return;
-  const int m = static_cast<int>(list.size());
-  const int k = body.n_generalized();
+  const int m = static_cast<int>(im.nodes.size());
+  if (m == 0) return;
+  reserve_contact_nodes(body, ws, m);
   const Mat3 Rt = ws.R.transpose();
-  MatX G(k, m), AG(k, m);
+  // P_i^T (R^T n_i) = (y, p_i x y, J_i^T y) for each listed node, then A^+ of them.
+  auto G = im.G.leftCols(m);
   for (int r = 0; r < m; ++r) {
-    G.col(r) = generalized_from_node(body, ws, list[r], Rt * normals[r]);
-    VecX column;
-    solve_generalized_mass(ws, G.col(r), column);
-    AG.col(r) = column;
+    const int i = im.nodes[r];
+    const Vec3 y = Rt * im.normals[r];
+    auto column = G.col(r);
+    column.head<3>() = y;
+    column.segment<3>(3) = ws.p[i].cross(y);
+    if (body.n_s > 0) {
+      column.tail(body.n_s).setZero();
+      add_Jt_y(ws, i, y, 1.0, column.data() + BodyLayout::kShapeInV);
+    }
   }
-  global = G.transpose() * AG;
-  implicit_node_correction(body, ws, list, normals, amounts, global, change, lambda);
-  const VecX dnu = AG * lambda;  // change of (R^T c-dot, omega, q_s-dot)
-  velocity_of(v) += ws.R * dnu.head<3>();
-  omega_of(v) += dnu.segment<3>(3);
-  if (body.n_s > 0) v.segment(BodyLayout::kShapeInV, body.n_s) += dnu.tail(body.n_s);
+  const MatX& V = ws.A_eigen.eigenvectors();
+  auto VtG = im.VtG.leftCols(m);
+  auto AG = im.AG.leftCols(m);
+  VtG.noalias() = V.transpose() * G;
+  VtG = ws.A_inverse_eigenvalues.asDiagonal() * VtG;
+  AG.noalias() = V * VtG;
+  im.global.topLeftCorner(m, m).noalias() = G.transpose() * AG;
+  implicit_node_correction(body, ws);
+  im.dnu.noalias() = AG * im.lambda.head(m);  // change of (R^T c-dot, omega, q_s-dot)
+  velocity_of(v) += ws.R * im.dnu.head<3>();
+  omega_of(v) += im.dnu.segment<3>(3);
+  if (body.n_s > 0) v.segment(BodyLayout::kShapeInV, body.n_s) += im.dnu.tail(body.n_s);
   for (int i = 0; i < n; ++i) {
-    Vec3 dv = change.segment<3>(3 * i);  // the local part, world frame
-    const int o = touching_obstacle[i];
+    Vec3 dv = im.change.segment<3>(3 * i);  // the local part, world frame
+    const int o = im.touching[i];
     if (o >= 0 && obstacles[o].friction > 0) {
-      const Vec3& normal = touching_normal[i];
-      const Vec3 node_change = dv + ws.R * node_from_generalized(body, ws, i, dnu);
+      const Vec3& normal = im.touching_normal[i];
+      const Vec3 node_change = dv + ws.R * node_from_generalized(body, ws, i, im.dnu);
       const Real stopped = node_change.dot(normal);
       const Vec3 v_rel = ws.x_dot[i] + node_change - obstacles[o].velocity_at(ws.x[i]);
       const Vec3 slip = v_rel - v_rel.dot(normal) * normal;

@@ -39,6 +39,7 @@ struct ImplicitMembraneWorkspace {
   int factorizations = 0;  // numeric factorizations so far
   MatX columns;            // n x 3 (k + 1): M P and M g, coordinate c of column j in column 3 j + c
   MatX solved;             // H^-1 of columns: Y and y0
+  MatX scratch;            // columns' shape: the permuted right-hand sides
   MatX P;                  // 3 n x k: the rows P_i stacked (body frame)
   MatX Z;                  // 3 n x (k + 1): M (P - Y) and M (g - y0)
   MatX PtZ;                // k x (k + 1)
@@ -47,6 +48,19 @@ struct ImplicitMembraneWorkspace {
   Eigen::PartialPivLU<MatX> lu;
   VecX g, z, t3n;    // 3 n
   VecX mu, rhs, tk;  // k
+  // The compliant contact (implicit_node_correction, collide/rigid_contact.cpp): the listed
+  // nodes, their normals and amounts, and dense scratch for up to `capacity` of them, grown by
+  // doubling so that a steady contact allocates nothing.
+  std::vector<int> nodes, active, touching;
+  std::vector<Vec3> normals, touching_normal;
+  std::vector<Real> amounts;
+  int capacity = 0;
+  MatX unit, node_columns, scratch_columns;  // n x capacity: e_i, H_s^-1 e_i, permuted
+  MatX system, global;                       // capacity x capacity
+  MatX G, AG, VtG;                           // k x capacity: P_i^T n_i, A^+ of them, V^T of them
+  VecX lambda, rhs_m;                        // capacity
+  VecX change;                               // 3 n: the local change
+  VecX dnu;                                  // k: the generalized change
 };
 
 // Per-body scratch, sized once (no allocation inside a step). Rebuildable at any time.

@@ -1,5 +1,8 @@
 #include "deform/implicit_membrane.h"
 
+#include <Eigen/Cholesky>
+#include <algorithm>
+
 #include "deform/body_dynamics.h"
 
 namespace pbm {
@@ -17,6 +20,7 @@ void prepare_implicit_membrane(const BodyModel& body, BodyWorkspace& ws) {
   im.factorizations = 0;
   im.columns.setZero(n, 3 * (k + 1));
   im.solved.setZero(n, 3 * (k + 1));
+  im.scratch.setZero(n, 3 * (k + 1));
   im.P.setZero(3 * n, k);
   im.Z.setZero(3 * n, k + 1);
   im.PtZ.setZero(k, k + 1);
@@ -29,6 +33,33 @@ void prepare_implicit_membrane(const BodyModel& body, BodyWorkspace& ws) {
   im.mu.setZero(k);
   im.rhs.setZero(k);
   im.tk.setZero(k);
+  im.nodes.reserve(static_cast<std::size_t>(n));
+  im.active.reserve(static_cast<std::size_t>(n));
+  im.normals.reserve(static_cast<std::size_t>(n));
+  im.amounts.reserve(static_cast<std::size_t>(n));
+  im.touching.assign(static_cast<std::size_t>(n), -1);
+  im.touching_normal.assign(static_cast<std::size_t>(n), Vec3::Zero());
+  im.capacity = 0;
+  reserve_contact_nodes(body, ws, 8);
+  im.change.setZero(3 * n);
+  im.dnu.setZero(k);
+}
+
+void reserve_contact_nodes(const BodyModel& body, BodyWorkspace& ws, int m) {
+  ImplicitMembraneWorkspace& im = ws.implicit;
+  if (m <= im.capacity) return;
+  const int n = body.n_nodes(), k = body.n_generalized();
+  im.capacity = std::min(n, std::max(2 * m, 8));
+  im.unit.setZero(n, im.capacity);
+  im.node_columns.setZero(n, im.capacity);
+  im.scratch_columns.setZero(n, im.capacity);
+  im.system.setZero(im.capacity, im.capacity);
+  im.global.setZero(im.capacity, im.capacity);
+  im.G.setZero(k, im.capacity);
+  im.AG.setZero(k, im.capacity);
+  im.VtG.setZero(k, im.capacity);
+  im.lambda.setZero(im.capacity);
+  im.rhs_m.setZero(im.capacity);
 }
 
 namespace {
@@ -49,6 +80,16 @@ void factor_system(const BodyModel& body, ImplicitMembraneWorkspace& im, Real a,
   f.a = a;
   f.b = b;
   ++im.factorizations;
+}
+
+// x = H^-1 b through the factor's parts, with `scratch` of b's shape: Eigen's own solve applies
+// the inverse permutation in place, which allocates a mask at every call.
+void solve_with_factor(const ImplicitMembraneWorkspace::Factor& f, const Eigen::Ref<const MatX>& b,
+                       Eigen::Ref<MatX> x, Eigen::Ref<MatX> scratch) {
+  scratch.noalias() = f.llt.permutationP() * b;
+  f.llt.matrixL().solveInPlace(scratch);
+  f.llt.matrixU().solveInPlace(scratch);
+  x.noalias() = f.llt.permutationPinv() * scratch;
 }
 
 // The rows P_i = [I, -p~_i, J_i] of every node, stacked (body frame).
@@ -103,7 +144,7 @@ void implicit_membrane_rates(const BodyModel& body, const Eigen::Ref<const VecX>
       im.columns(i, 3 * k + c) = m * im.g[3 * i + c];
     }
   }
-  im.solved = im.factor.llt.solve(im.columns);  // Y and y0
+  solve_with_factor(im.factor, im.columns, im.solved, im.scratch);  // Y and y0
   // Z = [M (P - Y) | M (g - y0)], so P^T Z = [P^T B Y | P^T B y0].
   for (int i = 0; i < n; ++i) {
     const Real m = body.node_mass[i];
@@ -135,48 +176,52 @@ void implicit_membrane_rates(const BodyModel& body, const Eigen::Ref<const VecX>
   }
 }
 
-void implicit_node_correction(const BodyModel& body, BodyWorkspace& ws, std::span<const int> nodes,
-                              std::span<const Vec3> normals, std::span<const Real> amounts,
-                              const MatX& global, Eigen::Ref<VecX> dx, VecX& lambda) {
+void implicit_node_correction(const BodyModel& body, BodyWorkspace& ws) {
   ImplicitMembraneWorkspace& im = ws.implicit;
-  dx.setZero();
-  const int m = static_cast<int>(nodes.size());
-  lambda.setZero(m);
-  if (m == 0 || !im.factor.analyzed || im.factor.a < 0) return;
+  im.change.setZero();
+  const int m = static_cast<int>(im.nodes.size());
+  if (m == 0) return;
+  reserve_contact_nodes(body, ws, m);  // the caller sized `global`; this only checks
+  im.lambda.head(m).setZero();
+  if (!im.factor.analyzed || im.factor.a < 0) return;
   const int n = body.n_nodes();
   // Columns H_s^-1 e_i of the listed nodes (H = H_s (x) I_3).
-  MatX unit = MatX::Zero(n, m);
-  for (int j = 0; j < m; ++j) unit(nodes[j], j) = 1;
-  const MatX columns = im.factor.llt.solve(unit);
-  std::vector<int> active(static_cast<std::size_t>(m));
-  for (int j = 0; j < m; ++j) active[j] = j;
-  VecX solution;
-  // Each pass drops the nodes the solution would pull; m passes at most.
-  for (int pass = 0; pass <= m && !active.empty(); ++pass) {
-    const int a = static_cast<int>(active.size());
-    MatX G(a, a);
-    VecX rhs(a);
+  auto unit = im.unit.leftCols(m);
+  auto columns = im.node_columns.leftCols(m);
+  unit.setZero();
+  for (int j = 0; j < m; ++j) unit(im.nodes[j], j) = 1;
+  solve_with_factor(im.factor, unit, columns, im.scratch_columns.leftCols(m));
+  im.active.clear();
+  for (int j = 0; j < m; ++j) im.active.push_back(j);
+  // Each pass drops the nodes the solution would pull (the system is positive definite: a
+  // Schur product of H^-1's block and the normals' Gram matrix, plus the global compliance).
+  int a = m;
+  for (int pass = 0; pass <= m && a > 0; ++pass) {
+    auto system = im.system.topLeftCorner(a, a);
+    auto rhs = im.rhs_m.head(a);
     for (int r = 0; r < a; ++r) {
-      rhs[r] = amounts[active[r]];
+      const int jr = im.active[r];
+      rhs[r] = im.amounts[jr];
       for (int c = 0; c < a; ++c) {
-        G(r, c) = columns(nodes[active[r]], active[c]) * normals[active[r]].dot(normals[active[c]]);
-        if (global.size() > 0) G(r, c) += global(active[r], active[c]);
+        const int jc = im.active[c];
+        system(r, c) =
+            columns(im.nodes[jr], jc) * im.normals[jr].dot(im.normals[jc]) + im.global(jr, jc);
       }
     }
-    solution = G.ldlt().solve(rhs);
-    std::vector<int> kept;
+    Eigen::LLT<Eigen::Ref<MatX>> llt(system);  // in place
+    llt.solveInPlace(rhs);
+    int kept = 0;
     for (int r = 0; r < a; ++r) {
-      if (solution[r] >= 0) kept.push_back(active[r]);
+      if (rhs[r] >= 0) im.active[kept++] = im.active[r];
     }
-    if (static_cast<int>(kept.size()) == a) break;
-    active = std::move(kept);
-    solution.resize(0);
+    if (kept == a) break;
+    a = kept;
   }
-  for (int r = 0; r < solution.size(); ++r) {
-    const int j = active[r];
-    lambda[j] = solution[r];
-    const Vec3 push = solution[r] * normals[j];
-    for (int i = 0; i < n; ++i) dx.segment<3>(3 * i) += columns(i, j) * push;
+  for (int r = 0; r < a; ++r) {
+    const int j = im.active[r];
+    im.lambda[j] = im.rhs_m[r];
+    const Vec3 push = im.rhs_m[r] * im.normals[j];
+    for (int i = 0; i < n; ++i) im.change.segment<3>(3 * i) += columns(i, j) * push;
   }
 }
 

@@ -42,19 +42,22 @@ void prepare_implicit_membrane(const BodyModel& body, BodyWorkspace& ws);
 void implicit_membrane_rates(const BodyModel& body, const Eigen::Ref<const VecX>& v,
                              BodyWorkspace& ws, Real h, Eigen::Ref<VecX> rates);
 
-// The smallest change of the node positions (or velocities) that moves each listed node i by
-// amounts[i] along normals[i] while pushing, never pulling (multipliers >= 0, by an active set).
-// A node moves through the body's local displacements, in the metric of the substep's
-// H = a M + b K, and through its rigid and global coordinates, whose compliance the caller gives
-// as `global` (m x m: n_i^T P_i A^+ P_j^T n_j, or n_i . n_j / mass for a translation):
+// The smallest change of the node positions (or velocities) that moves each listed node
+// (ws.implicit.nodes) by its amount along its normal while pushing, never pulling (multipliers
+// >= 0, by an active set). A node moves through the body's local displacements, in the metric of
+// the substep's H = a M + b K, and through its rigid and global coordinates, whose compliance the
+// caller gives in ws.implicit.global (m x m: n_i^T P_i A^+ P_j^T n_j, or n_i . n_j / mass for a
+// translation):
 //   (N^T H^-1 N + global) lambda = amounts,   local change dx = H^-1 N lambda.
 // A projection made node by node dents a stiff membrane by the step's whole penetration, an
 // energy 1/2 K_ii depth^2 that grows with the step; here a stiff body moves as a whole and a soft
 // one dents, as backward Euler over the step would have it. H is isotropic per node
-// (K_dd = K (x) I_3), so dx is in the normals' frame. dx has 3 n_nodes entries; lambda the
-// multipliers (0 for nodes dropped). Needs the factor of the substep (implicit_membrane_rates).
-void implicit_node_correction(const BodyModel& body, BodyWorkspace& ws, std::span<const int> nodes,
-                              std::span<const Vec3> normals, std::span<const Real> amounts,
-                              const MatX& global, Eigen::Ref<VecX> dx, VecX& lambda);
+// (K_dd = K (x) I_3), so dx is in the normals' frame. Writes dx into ws.implicit.change (3 n) and
+// the multipliers into ws.implicit.lambda (0 for nodes dropped). Needs the factor of the substep
+// (implicit_membrane_rates) and reserve_contact_nodes for the list's size.
+void implicit_node_correction(const BodyModel& body, BodyWorkspace& ws);
+
+// Room for m listed nodes in the contact scratch (grown by doubling; no allocation below).
+void reserve_contact_nodes(const BodyModel& body, BodyWorkspace& ws, int m);
 
 }  // namespace pbm
