@@ -128,6 +128,32 @@ std::vector<Cell> cells() {
            });
          }});
   }
+  // The implicit integrator (deform/implicit_membrane.h) at the same ends: the membrane it takes
+  // at the step's end, a step far past Euler's limit with no retry allowed, the hardest impact.
+  c.push_back({"membrane w0 = w1 = 1e+06, implicit", [] {
+                 return with([](Scene& s) {
+                   s.bodies[0].material.w0 = s.bodies[0].material.w1 = 1e6;
+                   s.solver.integrator = IntegratorKind::implicit;
+                 });
+               }});
+  c.push_back({"dt 10x past the Euler limit, implicit, max_retries 0",
+               [] {
+                 Scene s = ball_on_ground();
+                 s.solver.fps = 2;
+                 const BodyModel body = Simulation(s).model.bodies[0];
+                 const Real w = body.stability.omega, nu = body.damping;
+                 s.solver.dt = 10 * 2 / (nu / 2 + std::sqrt(nu * nu / 4 + w * w));
+                 s.solver.integrator = IntegratorKind::implicit;
+                 s.solver.max_retries = 0;
+                 return s;
+               },
+               4});
+  c.push_back({"10 m/s impact, local ball, implicit", [] {
+                 return with([](Scene& s) {
+                   s.bodies[0].velocity = Vec3(0, 0, -10);
+                   s.solver.integrator = IntegratorKind::implicit;
+                 });
+               }});
   c.push_back({"mass ratio 1:1e4, 1e4 kg ball dropped on a 1 kg ball", [] {
                  return with([](Scene& s) {
                    BodyDef heavy = s.bodies[0];
