@@ -19,7 +19,7 @@ void body_kinematics(const RateContext& c);     // kinematics: q-dot, first-orde
 void body_kinematic_rates(const Model& model, const VecX& q, const VecX& v, VecX& q_dot);
 void body_renormalize(const SubstepContext& c);     // renormalize: unit quaternions (sec. 6.1)
 bool velocity_split_needed(const Model& model);     // no obstacle stage restores the split
-void body_velocity_split(const SubstepContext& c);  // velocity_split
+void body_velocity_split(const SubstepContext& c);  // velocity_split, a frame's last substep
 void measure_bodies(const Model& model, const State& state, Workspace& ws, FrameStats& stats);
 Real body_energy_allowance(const Model& model, const Inputs& inputs, const State& state, Real t_end,
                            Workspace& ws);

@@ -34,6 +34,10 @@ struct Workspace {
   std::optional<BodyCollisionWorkspace> body_collisions;
   BodyCollisionStats body_collision_stats;  // of the last substep
   int contacts = 0;  // touching nodes counted in the substep under way (-> State::contact_nodes)
+  // Whether the substep under way is the last of its frame (advance_frame sets it before each;
+  // a substep advanced alone ends its own frame). The mean-axis split of bodies without an
+  // obstacle stage is restored only then (sim/stages_bodies.h).
+  bool substep_ends_frame = true;
   StageClock clock;
   // advance_frame's own: the frame's start (its retry point) and the guard's measurements.
   State frame_start;

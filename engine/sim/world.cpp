@@ -264,17 +264,21 @@ FrameResult advance_frame(const World& world, const Inputs& inputs, State& state
     int done = 0;
     for (int k = 0; k < substeps && ok; ++k) {
       // End of sec. 5.2.2: smaller steps while in contact, back to h after.
+      const bool last_substep = k + 1 == substeps;
       if (model.solver.contact_step_reduction && state.contact_nodes > 0) {
         const int m = static_cast<int>(std::ceil(1.0 / model.solver.contact_dt_factor - 1e-9));
         for (int j = 0; j < m && ok; ++j) {
+          ws.substep_ends_frame = last_substep && j + 1 == m;
           ok = advance_substep(world, inputs, state, h / m, ws, evaluations);
         }
         done += m;
       } else {
+        ws.substep_ends_frame = last_substep;
         ok = advance_substep(world, inputs, state, h, ws, evaluations);
         ++done;
       }
     }
+    ws.substep_ends_frame = true;
     FrameStats& after = ws.after;
     std::string failure;
     if (!ok && all_finite(state)) {
