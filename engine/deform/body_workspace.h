@@ -37,7 +37,7 @@ struct ImplicitMembraneWorkspace {
   Eigen::SparseMatrix<double> H;  // a M + b K, same pattern as K plus the diagonal
   Factor factor;
   int factorizations = 0;  // numeric factorizations so far
-  MatX columns;            // n x 3 (k + 1): M P and M g, coordinate c of column j in column 3 j + c
+  MatX columns;            // n x (4 + 3 n_s + 3): the distinct scalar fields of M P, then M g
   MatX solved;             // H^-1 of columns: Y and y0
   MatX scratch;            // columns' shape: the permuted right-hand sides
   MatX P;                  // 3 n x k: the rows P_i stacked (body frame)

@@ -18,9 +18,9 @@ void prepare_implicit_membrane(const BodyModel& body, BodyWorkspace& ws) {
   im.H = im.K;
   im.factor = {};
   im.factorizations = 0;
-  im.columns.setZero(n, 3 * (k + 1));
-  im.solved.setZero(n, 3 * (k + 1));
-  im.scratch.setZero(n, 3 * (k + 1));
+  im.columns.setZero(n, 4 + 3 * body.n_s + 3);
+  im.solved.setZero(n, 4 + 3 * body.n_s + 3);
+  im.scratch.setZero(n, 4 + 3 * body.n_s + 3);
   im.P.setZero(3 * n, k);
   im.Z.setZero(3 * n, k + 1);
   im.PtZ.setZero(k, k + 1);
@@ -135,24 +135,40 @@ void implicit_membrane_rates(const BodyModel& body, const Eigen::Ref<const VecX>
   } else {
     im.g = d_rate;
   }
-  // Right-hand sides M P (k columns) and M g, coordinate by coordinate: column 3 j + c holds
-  // coordinate c of every node.
+  // Right-hand sides M P and M g as scalar fields over the nodes (H = H_s (x) I_3): of P's 3 k
+  // coordinate columns only 4 + 3 n_s differ. A translation e_a has coordinate a alone, 1 at
+  // every node (field m); a rotation e_a gives (e_a x p_i)_c, a signed coordinate of p (fields
+  // m p_x, m p_y, m p_z); each J column its three coordinates; then g's three. 25 solves for a
+  // superquadric where 57 were.
+  const int ns = body.n_s;
+  const int g_col = 4 + 3 * ns;
   for (int i = 0; i < n; ++i) {
     const Real m = body.node_mass[i];
-    for (int c = 0; c < 3; ++c) {
-      for (int j = 0; j < k; ++j) im.columns(i, 3 * j + c) = m * im.P(3 * i + c, j);
-      im.columns(i, 3 * k + c) = m * im.g[3 * i + c];
-    }
+    im.columns(i, 0) = m;
+    for (int l = 0; l < 3; ++l) im.columns(i, 1 + l) = m * ws.p[i][l];
+    for (int kk = 0; kk < ns; ++kk)
+      for (int c = 0; c < 3; ++c) im.columns(i, 4 + 3 * kk + c) = m * im.P(3 * i + c, 6 + kk);
+    for (int c = 0; c < 3; ++c) im.columns(i, g_col + c) = m * im.g[3 * i + c];
   }
-  solve_with_factor(im.factor, im.columns, im.solved, im.scratch);  // Y and y0
+  solve_with_factor(im.factor, im.columns, im.solved, im.scratch);
+  // Y(3 i + c, j) = (H^-1 M P)_{3 i + c, j} from the solved fields.
+  auto Y = [&](int i, int c, int j) -> Real {
+    if (j < 3) return j == c ? im.solved(i, 0) : 0.0;
+    if (j < 6) {
+      // (e_a x p)_c = -p_{a+2} for c = a + 1, p_{a+1} for c = a + 2 (indices mod 3), 0 for c = a.
+      const int axis = j - 3;
+      if (c == (axis + 1) % 3) return -im.solved(i, 1 + (axis + 2) % 3);
+      if (c == (axis + 2) % 3) return im.solved(i, 1 + (axis + 1) % 3);
+      return 0.0;
+    }
+    return im.solved(i, 4 + 3 * (j - 6) + c);
+  };
   // Z = [M (P - Y) | M (g - y0)], so P^T Z = [P^T B Y | P^T B y0].
   for (int i = 0; i < n; ++i) {
     const Real m = body.node_mass[i];
     for (int c = 0; c < 3; ++c) {
-      for (int j = 0; j < k; ++j) {
-        im.Z(3 * i + c, j) = im.columns(i, 3 * j + c) - m * im.solved(i, 3 * j + c);
-      }
-      im.Z(3 * i + c, k) = im.columns(i, 3 * k + c) - m * im.solved(i, 3 * k + c);
+      for (int j = 0; j < k; ++j) im.Z(3 * i + c, j) = m * (im.P(3 * i + c, j) - Y(i, c, j));
+      im.Z(3 * i + c, k) = m * (im.g[3 * i + c] - im.solved(i, g_col + c));
     }
   }
   im.PtZ.noalias() = im.P.transpose() * im.Z;
@@ -164,8 +180,8 @@ void implicit_membrane_rates(const BodyModel& body, const Eigen::Ref<const VecX>
   // z = y0 + Y mu.
   for (int i = 0; i < n; ++i) {
     for (int c = 0; c < 3; ++c) {
-      Real zi = im.solved(i, 3 * k + c);
-      for (int j = 0; j < k; ++j) zi += im.solved(i, 3 * j + c) * im.mu[j];
+      Real zi = im.solved(i, g_col + c);
+      for (int j = 0; j < k; ++j) zi += Y(i, c, j) * im.mu[j];
       im.z[3 * i + c] = zi;
     }
   }

@@ -18,7 +18,8 @@
 //   z = y0 + Y mu,  Y = H^-1 M P,  y0 = H^-1 M g,
 //   (I - A^+ P^T M (P - Y)) mu = A^+ P^T M (g - y0)             (k x k, k = 6 + n_s).
 // K_dd = K (x) I_3 (the three coordinates share one scalar matrix, membrane_stiffness.h), so
-// every solve is the scalar n x n factor applied to 3 (k + 1) columns. Each mode of K_dd in the
+// every solve is the scalar n x n factor applied to the distinct scalar fields of M P and M g
+// (4 + 3 n_s + 3 of them: implicit_membrane.cpp). Each mode of K_dd in the
 // mean-axis subspace then follows backward Euler, stable and damped at any h; the rigid, global
 // and contact rows stay explicit (their limits are the parameter inertia floor's and the contact's
 // mobility sizing, both set so they hold at any step).
