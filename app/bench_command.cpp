@@ -101,10 +101,7 @@ int run_bench(const BenchOptions& o) {
   std::printf(
       "bench deform: one step of '%s' resting on the ground (dt = %g s or the ball's stability "
       "limit, last column; %s integrator) vs Bullet btSoftBody at the same dt\n",
-      scene.name.c_str(), scene.solver.dt,
-      std::find_if(kIntegratorKindNames.begin(), kIntegratorKindNames.end(), [&](const auto& e) {
-        return e.second == scene.solver.integrator;
-      })->first.data());
+      scene.name.c_str(), scene.solver.dt, name_of(kIntegratorKindNames, scene.solver.integrator));
   std::printf("%8s %14s %14s %14s %10s %12s %10s\n", "nodes", "ours us/step", "bullet nodes",
               "bullet us/step", "ratio", "ours us/node", "dt s");
   for (int resolution : {8, 16, 32, 64, 128}) {

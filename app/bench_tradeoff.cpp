@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "plot_png.h"
 #include "progress_bar.h"
+#include "scene/scene_enum_names.h"
 #include "scene/scene_json.h"
 #include "sim/tradeoff.h"
 
@@ -29,20 +30,6 @@ std::vector<std::string> split(const std::string& text) {
   return parts;
 }
 
-const char* name_of(IntegratorKind kind) {
-  switch (kind) {
-    case IntegratorKind::euler:
-      return "euler";
-    case IntegratorKind::rk4:
-      return "rk4";
-    case IntegratorKind::rk45:
-      return "rk45";
-    case IntegratorKind::implicit:
-      return "implicit";
-  }
-  return "?";
-}
-
 void write_csv(const std::string& path, const TradeoffReport& report) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error(path + ": cannot write");
@@ -51,12 +38,12 @@ void write_csv(const std::string& path, const TradeoffReport& report) {
          "message\n";
   char line[512];
   for (const TradeoffPoint& p : report.points) {
-    std::snprintf(line, sizeof line,
-                  "%s,%.9g,%.3g,%g,%d,%d,%.6g,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%d,",
-                  name_of(p.setting.integrator), p.setting.dt, p.setting.tolerance,
-                  p.setting.resolution, p.setting.current ? 1 : 0, p.ok ? 1 : 0, p.wall_seconds,
-                  p.substeps, p.evaluations, p.retries, p.centre_error, p.shape_error, p.node_rms,
-                  p.constraint_violation, p.energy_error, p.pareto ? 1 : 0);
+    std::snprintf(
+        line, sizeof line, "%s,%.9g,%.3g,%g,%d,%d,%.6g,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%d,",
+        name_of(kIntegratorKindNames, p.setting.integrator), p.setting.dt, p.setting.tolerance,
+        p.setting.resolution, p.setting.current ? 1 : 0, p.ok ? 1 : 0, p.wall_seconds, p.substeps,
+        p.evaluations, p.retries, p.centre_error, p.shape_error, p.node_rms, p.constraint_violation,
+        p.energy_error, p.pareto ? 1 : 0);
     std::string message = p.message;
     for (char& c : message) {
       if (c == ',' || c == '\n' || c == '"') c = ' ';
@@ -88,7 +75,7 @@ LogLogPlot make_plot(const Scene& scene, const TradeoffReport& report, double se
     // A run that matches the reference to the last bit still needs a place on a log axis.
     const std::array<double, 2> xy{std::max(p.wall_seconds, 1e-6), std::max(p.centre_error, 1e-12)};
     PlotSeries& s = by_kind[p.setting.integrator];
-    s.name = name_of(p.setting.integrator);
+    s.name = name_of(kIntegratorKindNames, p.setting.integrator);
     s.color = colors.at(p.setting.integrator);
     s.points.push_back(xy);
     s.radii.push_back(3.0 + 2.0 * std::sqrt(p.setting.resolution));

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <map>
 
+#include "scene/scene_enum_names.h"
 #include "scene/scene_json.h"
 
 namespace pbm {
@@ -334,20 +335,6 @@ void timeline(Studio& studio, StudioActions& actions, const json& scene) {
   }
 }
 
-const char* integrator_label(IntegratorKind kind) {
-  switch (kind) {
-    case IntegratorKind::euler:
-      return "euler";
-    case IntegratorKind::rk4:
-      return "rk4";
-    case IntegratorKind::rk45:
-      return "rk45";
-    case IntegratorKind::implicit:
-      return "implicit";
-  }
-  return "?";
-}
-
 ImU32 integrator_color(IntegratorKind kind) {
   switch (kind) {
     case IntegratorKind::euler:
@@ -456,10 +443,10 @@ void tradeoff_plot(Studio::Tradeoff& t) {
   }
   for (IntegratorKind k : {IntegratorKind::euler, IntegratorKind::rk4, IntegratorKind::implicit,
                            IntegratorKind::rk45}) {
-    ImGui::ColorButton(integrator_label(k), ImColor(integrator_color(k)),
+    ImGui::ColorButton(name_of(kIntegratorKindNames, k), ImColor(integrator_color(k)),
                        ImGuiColorEditFlags_NoTooltip, ImVec2(10, 10));
     ImGui::SameLine();
-    ImGui::Text("%s", integrator_label(k));
+    ImGui::Text("%s", name_of(kIntegratorKindNames, k));
     ImGui::SameLine();
   }
   ImGui::TextDisabled("(red ring: the scene's setting; size: resolution)");

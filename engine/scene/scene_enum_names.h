@@ -42,4 +42,14 @@ inline constexpr NameTable<ConstraintKind, 2> kConstraintKindNames{
 inline constexpr NameTable<ConstraintSolverKind, 2> kConstraintSolverKindNames{
     {{"dense", ConstraintSolverKind::dense}, {"sparse", ConstraintSolverKind::sparse}}};
 
+// The scene file's name of a kind ("" if the table lacks it): what messages, CSV columns and
+// labels print, so they use the words a scene file does.
+template <typename Enum, std::size_t N>
+constexpr const char* name_of(const NameTable<Enum, N>& table, Enum value) {
+  for (const auto& [name, kind] : table) {
+    if (kind == value) return name.data();
+  }
+  return "";
+}
+
 }  // namespace pbm

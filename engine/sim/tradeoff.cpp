@@ -5,24 +5,11 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "scene/scene_enum_names.h"
 #include "sim/simulation.h"
 
 namespace pbm {
 namespace {
-
-const char* integrator_name(IntegratorKind kind) {
-  switch (kind) {
-    case IntegratorKind::euler:
-      return "euler";
-    case IntegratorKind::rk4:
-      return "rk4";
-    case IntegratorKind::rk45:
-      return "rk45";
-    case IntegratorKind::implicit:
-      return "implicit";
-  }
-  return "?";
-}
 
 // What a run leaves to compare, frame by frame.
 struct Trajectory {
@@ -125,8 +112,8 @@ std::string TradeoffSetting::label() const {
   if (integrator == IntegratorKind::rk45) {
     std::snprintf(text, sizeof text, "rk45 tol %g dt %g res %gx", tolerance, dt, resolution);
   } else {
-    std::snprintf(text, sizeof text, "%s dt %g res %gx", integrator_name(integrator), dt,
-                  resolution);
+    std::snprintf(text, sizeof text, "%s dt %g res %gx", name_of(kIntegratorKindNames, integrator),
+                  dt, resolution);
   }
   return text;
 }
