@@ -87,6 +87,67 @@ void init_constraint_workspace(const ConstrainedSystem& system, ConstraintWorksp
   cw.ldlt.analyze(cw.N_sparse);
 }
 
+void factor_constraint_matrix(ConstraintWorkspace& cw) {
+  Real max_diagonal = 0;
+  const int m = cw.n_constraints;
+  if (cw.sparse) {
+    std::fill(cw.N_sparse.valuePtr(), cw.N_sparse.valuePtr() + cw.N_sparse.nonZeros(), 0.0);
+    for_each_shared_body_pair(
+        cw, [&](const std::array<int, 2>& e1, const std::array<int, 2>& e2, Real sign) {
+          const Mat3 block = sign * cw.G[e1[0]][e1[1]].transpose() * cw.Y[e2[0]][e2[1]];
+          for (int i = 0; i < 3; ++i) {
+            for (int j = 0; j < 3; ++j)
+              cw.N_sparse.coeffRef(3 * e1[0] + i, 3 * e2[0] + j) += block(i, j);
+          }
+        });
+    for (int i = 0; i < 3 * m; ++i) max_diagonal = std::max(max_diagonal, cw.N_sparse.coeff(i, i));
+    cw.regularization = kRegularization * std::max(max_diagonal, Real(1e-300));
+    for (int i = 0; i < 3 * m; ++i) cw.N_sparse.coeffRef(i, i) += cw.regularization;
+    cw.ldlt.factorize_values(cw.N_sparse);
+  } else {
+    cw.N.setZero();
+    for_each_shared_body_pair(
+        cw, [&](const std::array<int, 2>& e1, const std::array<int, 2>& e2, Real sign) {
+          cw.N.block<3, 3>(3 * e1[0], 3 * e2[0]).noalias() +=
+              sign * cw.G[e1[0]][e1[1]].transpose() * cw.Y[e2[0]][e2[1]];
+        });
+    max_diagonal = cw.N.diagonal().maxCoeff();
+    cw.regularization = kRegularization * std::max(max_diagonal, Real(1e-300));
+    cw.N.diagonal().array() += cw.regularization;
+    cw.lu.compute(cw.N);
+  }
+}
+
+void solve_constraint_matrix_negated(ConstraintWorkspace& cw, const VecX& rhs, VecX& out) {
+  if (cw.sparse) {
+    cw.ldlt.solve_negated(rhs, out);
+  } else {
+    out.noalias() = cw.lu.solve(rhs);
+    out = -out;
+  }
+}
+
+void fill_end_responses(const ConstrainedSystem& system, std::vector<BodyWorkspace>& bodies,
+                        ConstraintWorkspace& cw) {
+  const std::vector<PointConstraintModel>& points = system.constraints.points;
+  for (int l = 0; l < cw.n_constraints; ++l) {
+    for (int e = 0; e < 2; ++e) {
+      const ConstraintPoint& end = points[l].ends[e];
+      if (end.body < 0) continue;
+      const BodyModel& body = system.bodies[end.body];
+      BodyWorkspace& bw = bodies[end.body];
+      const MatX& G = cw.G[l][e];
+      MatX& Y = cw.Y[l][e];
+      const Real scale = body.order == DynamicsOrder::first ? 1.0 / body.damping : 1.0;
+      for (int j = 0; j < 3; ++j) {
+        cw.column[end.body] = G.col(j);
+        solve_generalized_mass(bw, cw.column[end.body], cw.response[end.body]);
+        Y.col(j) = scale * cw.response[end.body];
+      }
+    }
+  }
+}
+
 void add_constraint_rates(const ConstrainedSystem& system, const VecX& q, const VecX& v,
                           std::vector<BodyWorkspace>& bodies, ConstraintWorkspace& cw,
                           VecX& rates) {
@@ -102,19 +163,11 @@ void add_constraint_rates(const ConstrainedSystem& system, const VecX& q, const 
     for (int e = 0; e < 2; ++e) {
       const ConstraintPoint& end = points[l].ends[e];
       if (end.body < 0) continue;
-      const BodyModel& body = system.bodies[end.body];
-      BodyWorkspace& bw = bodies[end.body];
-      MatX& G = cw.G[l][e];
-      MatX& Y = cw.Y[l][e];
-      constraint_end_jacobian_transpose(end, body, bw, G);
-      const Real scale = body.order == DynamicsOrder::first ? 1.0 / body.damping : 1.0;
-      for (int j = 0; j < 3; ++j) {
-        cw.column[end.body] = G.col(j);
-        solve_generalized_mass(bw, cw.column[end.body], cw.response[end.body]);
-        Y.col(j) = scale * cw.response[end.body];
-      }
+      constraint_end_jacobian_transpose(end, system.bodies[end.body], bodies[end.body],
+                                        cw.G[l][e]);
     }
   }
+  fill_end_responses(system, bodies, cw);
 
   // r of (7.24), (7.35): the free relative rate plus Baumgarte's feedback (7.14).
   for (int l = 0; l < m; ++l) {
@@ -136,36 +189,8 @@ void add_constraint_rates(const ConstrainedSystem& system, const VecX& q, const 
   }
 
   // N by (7.37)-(7.41), then solve (7.33).
-  Real max_diagonal = 0;
-  if (cw.sparse) {
-    std::fill(cw.N_sparse.valuePtr(), cw.N_sparse.valuePtr() + cw.N_sparse.nonZeros(), 0.0);
-    for_each_shared_body_pair(
-        cw, [&](const std::array<int, 2>& e1, const std::array<int, 2>& e2, Real sign) {
-          const Mat3 block = sign * cw.G[e1[0]][e1[1]].transpose() * cw.Y[e2[0]][e2[1]];
-          for (int i = 0; i < 3; ++i) {
-            for (int j = 0; j < 3; ++j)
-              cw.N_sparse.coeffRef(3 * e1[0] + i, 3 * e2[0] + j) += block(i, j);
-          }
-        });
-    for (int i = 0; i < 3 * m; ++i) max_diagonal = std::max(max_diagonal, cw.N_sparse.coeff(i, i));
-    cw.regularization = kRegularization * std::max(max_diagonal, Real(1e-300));
-    for (int i = 0; i < 3 * m; ++i) cw.N_sparse.coeffRef(i, i) += cw.regularization;
-    cw.ldlt.factorize_values(cw.N_sparse);
-    cw.ldlt.solve_negated(cw.r, cw.f_c);
-  } else {
-    cw.N.setZero();
-    for_each_shared_body_pair(
-        cw, [&](const std::array<int, 2>& e1, const std::array<int, 2>& e2, Real sign) {
-          cw.N.block<3, 3>(3 * e1[0], 3 * e2[0]).noalias() +=
-              sign * cw.G[e1[0]][e1[1]].transpose() * cw.Y[e2[0]][e2[1]];
-        });
-    max_diagonal = cw.N.diagonal().maxCoeff();
-    cw.regularization = kRegularization * std::max(max_diagonal, Real(1e-300));
-    cw.N.diagonal().array() += cw.regularization;
-    cw.lu.compute(cw.N);
-    cw.f_c.noalias() = cw.lu.solve(cw.r);
-    cw.f_c = -cw.f_c;
-  }
+  factor_constraint_matrix(cw);
+  solve_constraint_matrix_negated(cw, cw.r, cw.f_c);
 
   // f_gc = s L^T f_c on each end's body (7.9), (7.20): its rates gain s M^-1 L^T f_c = s Y f_c.
   for (int l = 0; l < m; ++l) {

@@ -66,6 +66,15 @@ void init_constraint_workspace(const ConstrainedSystem& system, ConstraintWorksp
 void add_constraint_rates(const ConstrainedSystem& system, const VecX& q, const VecX& v,
                           std::vector<BodyWorkspace>& bodies, ConstraintWorkspace& cw, VecX& rates);
 
+// The parts of the solve that the projection after collisions (constrain/constraint_projection.h)
+// shares with the forces: Y = M^-1 G ((nu M)^-1 G for first-order bodies) of every end from
+// cw.G and the bodies' factored mass blocks; N assembled from G and Y by (7.37)-(7.41),
+// regularized and factored; out = -N^-1 rhs with that factor (allocation-free).
+void fill_end_responses(const ConstrainedSystem& system, std::vector<BodyWorkspace>& bodies,
+                        ConstraintWorkspace& cw);
+void factor_constraint_matrix(ConstraintWorkspace& cw);
+void solve_constraint_matrix_negated(ConstraintWorkspace& cw, const VecX& rhs, VecX& out);
+
 // |C_l| of every point constraint l [m] into violations (resized to their count) at the
 // kinematics in `bodies`; returns max_l |C_l| (0 without constraints).
 Real measure_constraint_violations(const ConstrainedSystem& system, const VecX& q,

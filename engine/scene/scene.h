@@ -45,6 +45,10 @@ struct SolverDef {
   Real constraint_alpha = 10.0;         // Baumgarte alpha of (7.14) [1/s], >= 0
   std::optional<Real> constraint_beta;  // Baumgarte beta [1/s], >= 0; absent: = alpha (7.16)
   ConstraintSolverKind constraint_solver = ConstraintSolverKind::dense;
+  // After the collision stages, C and C-dot are restored to their values before them
+  // (constrain/constraint_projection.h); false: Baumgarte's feedback alone closes what a
+  // collision opens.
+  bool constraint_projection = true;
   // Collisions between bodies (sec. 5.2.2); parts joined by a constraint never collide.
   bool body_collisions = true;
   bool self_collision = false;   // a local body with itself (collide/self_collision.h)

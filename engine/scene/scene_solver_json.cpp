@@ -64,6 +64,10 @@ constexpr auto kSolverFields = std::to_array<Field<SolverDef>>({
         {.key = "constraint_solver",
          .description = "Solve of N f_c + r = 0 (7.33): dense LU, or sparse LDL^T for loop-free "
                         "systems (loops fall back to dense)."}),
+    value<&SolverDef::constraint_projection>(
+        {.key = "constraint_projection",
+         .description = "After collisions, restore each constraint's C and C-dot to their values "
+                        "before them (position and velocity projection in the mass metric)."}),
     value<&SolverDef::body_collisions>(
         {.key = "body_collisions",
          .description = "Collisions between bodies (5.2.2); parts joined by a constraint never "

@@ -5,6 +5,8 @@
 #include "constrain/constraint_forces.h"
 #include "constrain/hinge_spring.h"
 #include "constrain/point_constraint.h"
+#include "sim/stages_collisions.h"
+#include "sim/stages_obstacles.h"
 
 namespace pbm::stages {
 
@@ -32,6 +34,38 @@ bool constraints_present(const Model& model) {
 void size_constraints(const Model& model, Workspace& ws) {
   ws.constraints.emplace();
   init_constraint_workspace(system_of(model), *ws.constraints);
+  if (constraint_projection_needed(model)) {
+    ws.constraint_projection.emplace();
+    init_constraint_projection(system_of(model), *ws.constraint_projection);
+  }
+}
+
+bool constraint_projection_needed(const Model& model) {
+  return model.solver.constraint_projection && !model.constraints.points.empty() &&
+         (obstacles_present(model) || body_collisions_present(model) ||
+          self_collision_present(model));
+}
+
+void record_constraints(const SubstepContext& c) {
+  // The state the integrator left, before any collision stage moves a body on its own.
+  record_constraints_before_collisions(system_of(c.model), c.state.q, c.state.v, c.ws.bodies,
+                                       *c.ws.constraint_projection);
+}
+
+void project_constraints(const SubstepContext& c) {
+  // The projection moves the constrained parts by what the collisions opened (1e-4 m at a
+  // landing), which may put a node back inside an obstacle, and no substep ends with one there
+  // (collide/rigid_contact.h). So the two alternate, the obstacles last: each round's opening is
+  // a fraction of the last one's. Measured on the snowman's landings, largest |C| from 1.5 s on:
+  // 1 round 1.9 mm, 2 rounds 0.41 mm, 4 rounds 0.043 mm, 8 rounds the same.
+  constexpr int kRounds = 4;
+  ConstraintProjectionWorkspace& pw = *c.ws.constraint_projection;
+  for (int round = 0; round < kRounds; ++round) {
+    const ConstraintProjection done = project_constraints_after_collisions(
+        system_of(c.model), c.state.q, c.state.v, c.ws.bodies, *c.ws.constraints, pw, c.dt);
+    if (!done.ran || !obstacles_present(c.model)) return;
+    resolve_obstacle_penetrations(c, pw.constrained);
+  }
 }
 
 void constraint_rates(const RateContext& c) {

@@ -11,6 +11,11 @@ namespace pbm::stages {
 bool constraints_present(const Model& model);
 void size_constraints(const Model& model, Workspace& ws);
 void constraint_rates(const RateContext& c);  // constraints: (7.3), (7.4)
+// Whether collisions can open the constraints (a collision stage is present) and the solver
+// restores them (solver.constraint_projection).
+bool constraint_projection_needed(const Model& model);
+void record_constraints(const SubstepContext& c);   // renormalize, after the bodies'
+void project_constraints(const SubstepContext& c);  // constraint_projection
 void measure_constraints(const Model& model, const State& state, Workspace& ws, FrameStats& stats);
 Real constraint_allowance(const Model& model, const Inputs& inputs, const State& state, Real t_end,
                           Workspace& ws);

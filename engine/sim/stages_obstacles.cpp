@@ -24,10 +24,15 @@ void obstacle_forces(const RateContext& c) {
 }
 
 void obstacle_collisions(const SubstepContext& c) {
+  resolve_obstacle_penetrations(c, {});
+}
+
+void resolve_obstacle_penetrations(const SubstepContext& c, std::span<const char> only) {
   // Obstacles where their tracks put them at the step's end, the time of the positions being
   // resolved (the rest of the drive stays at the last evaluation's time).
   place_obstacles(c.model, c.inputs, c.state.time, c.ws.drive.obstacles);
   for (std::size_t b = 0; b < c.model.bodies.size(); ++b) {
+    if (!only.empty() && !only[b]) continue;
     const BodyModel& body = c.model.bodies[b];
     resolve_penetrations(c.ws.drive.obstacles, body, body_q(body, c.state.q),
                          body_v(body, c.state.v), c.ws.bodies[b],

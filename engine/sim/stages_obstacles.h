@@ -4,6 +4,8 @@
 // subsystem table (sim/subsystems.cpp).
 #pragma once
 
+#include <span>
+
 #include "sim/subsystem.h"
 
 namespace pbm::stages {
@@ -11,6 +13,9 @@ namespace pbm::stages {
 bool obstacles_present(const Model& model);
 void obstacle_forces(const RateContext& c);         // contact_forces: (5.11), (5.12)
 void obstacle_collisions(const SubstepContext& c);  // obstacle_collisions: projection, split
+// The same for the bodies marked in `only` (all when it is empty): the constraint projection's
+// second pass, so a substep still ends with every node outside every obstacle.
+void resolve_obstacle_penetrations(const SubstepContext& c, std::span<const char> only);
 void measure_obstacles(const Model& model, const State& state, Workspace& ws, FrameStats& stats);
 Real obstacle_energy_allowance(const Model& model, const Inputs& inputs, const State& state,
                                Real t_end, Workspace& ws);

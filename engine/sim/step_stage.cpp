@@ -34,6 +34,8 @@ const char* stage_name(StepStage stage) {
       return "velocity_split";
     case StepStage::self_collisions:
       return "self_collisions";
+    case StepStage::constraint_projection:
+      return "constraint_projection";
     case StepStage::liquid:
       return "liquid";
     case StepStage::coupling:

@@ -30,6 +30,7 @@ enum class StepStage {
   obstacle_collisions,  // with obstacles (5.2.1)
   velocity_split,       // the mean-axis split restored where no obstacle stage did it
   self_collisions,      // a local body with itself
+  constraint_projection,  // constraints restored to what the collisions found (issue 12)
   liquid,               // the liquid's grid (ch. 16)
   coupling,             // liquid and solids (ch. 16)
   measure,              // energies and distances for the stability guard

@@ -9,6 +9,7 @@
 
 #include "collide/body_collisions.h"
 #include "constrain/constraint_forces.h"
+#include "constrain/constraint_projection.h"
 #include "deform/body_workspace.h"
 #include "integrate/integrators.h"
 #include "sim/frame_stats.h"
@@ -31,6 +32,8 @@ struct Workspace {
   // Present only when the scene has the subsystem (docs/architecture.md: a scene pays only for
   // what it uses).
   std::optional<ConstraintWorkspace> constraints;
+  // Only where collisions can open the constraints (sim/stages_constraints.h).
+  std::optional<ConstraintProjectionWorkspace> constraint_projection;
   std::optional<BodyCollisionWorkspace> body_collisions;
   BodyCollisionStats body_collision_stats;  // of the last substep
   int contacts = 0;  // touching nodes counted in the substep under way (-> State::contact_nodes)
