@@ -176,8 +176,8 @@ TEST(Constraints, ProjectionAfterACollisionRestoresCAndItsRateWithInternalImpuls
   auto qa = body_q(a, sim.state.q);
   auto va = body_v(a, sim.state.v);
   position_of(qa) += Vec3(2e-3, -1e-3, 1e-3);
-  quaternion_of(qa) = quaternion_product(quaternion_of(qa),
-                                         quaternion_from_axis_angle(Vec3(1, 2, 3), 0.02));
+  quaternion_of(qa) =
+      quaternion_product(quaternion_of(qa), quaternion_from_axis_angle(Vec3(1, 2, 3), 0.02));
   velocity_of(va) += Vec3(0.3, -0.4, 0.0);
   omega_of(va) += Vec3(0, 0, 1);
   const Vec3 p_jump = momentum();
@@ -199,9 +199,8 @@ TEST(Constraints, ProjectionAfterACollisionRestoresCAndItsRateWithInternalImpuls
   EXPECT_LT((p_after - p_jump).norm(), 1e-10 * p_jump.norm());
   // Unchanged constraints are left alone, bit for bit.
   const VecX q = sim.state.q, v = sim.state.v;
-  EXPECT_FALSE(project_constraints_after_collisions(system, sim.state.q, sim.state.v,
-                                                    sim.ws.bodies, *sim.ws.constraints, pw,
-                                                    s.solver.dt)
+  EXPECT_FALSE(project_constraints_after_collisions(system, sim.state.q, sim.state.v, sim.ws.bodies,
+                                                    *sim.ws.constraints, pw, s.solver.dt)
                    .ran);
   EXPECT_TRUE(same_bits(q, sim.state.q) && same_bits(v, sim.state.v));
 }

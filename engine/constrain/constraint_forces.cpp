@@ -163,8 +163,7 @@ void add_constraint_rates(const ConstrainedSystem& system, const VecX& q, const 
     for (int e = 0; e < 2; ++e) {
       const ConstraintPoint& end = points[l].ends[e];
       if (end.body < 0) continue;
-      constraint_end_jacobian_transpose(end, system.bodies[end.body], bodies[end.body],
-                                        cw.G[l][e]);
+      constraint_end_jacobian_transpose(end, system.bodies[end.body], bodies[end.body], cw.G[l][e]);
     }
   }
   fill_end_responses(system, bodies, cw);

@@ -58,16 +58,17 @@ void evaluate_constraints(const ConstrainedSystem& system, const VecX& q, const 
   for (std::size_t l = 0; l < points.size(); ++l) {
     const std::array<ConstraintPoint, 2>& ends = points[l].ends;
     const Eigen::Index at = 3 * static_cast<Eigen::Index>(l);
-    C.segment<3>(at) = end_position(ends[0], system, q, bodies, pw) -
-                       end_position(ends[1], system, q, bodies, pw);
-    C_dot.segment<3>(at) = end_velocity(ends[0], system, v, bodies, pw) -
-                           end_velocity(ends[1], system, v, bodies, pw);
+    C.segment<3>(at) =
+        end_position(ends[0], system, q, bodies, pw) - end_position(ends[1], system, q, bodies, pw);
+    C_dot.segment<3>(at) =
+        end_velocity(ends[0], system, v, bodies, pw) - end_velocity(ends[1], system, v, bodies, pw);
   }
 }
 
 Real largest_block(const VecX& x) {
   Real worst = 0;
-  for (Eigen::Index l = 0; l + 2 < x.size(); l += 3) worst = std::max(worst, x.segment<3>(l).norm());
+  for (Eigen::Index l = 0; l + 2 < x.size(); l += 3)
+    worst = std::max(worst, x.segment<3>(l).norm());
   return worst;
 }
 
@@ -104,8 +105,7 @@ void factor_projection(const ConstrainedSystem& system, const VecX& q, const Vec
     for (int e = 0; e < 2; ++e) {
       const ConstraintPoint& end = points[l].ends[e];
       if (end.body < 0) continue;
-      constraint_end_jacobian_transpose(end, system.bodies[end.body], bodies[end.body],
-                                        cw.G[l][e]);
+      constraint_end_jacobian_transpose(end, system.bodies[end.body], bodies[end.body], cw.G[l][e]);
     }
   }
   fill_end_responses(system, bodies, cw);
@@ -139,12 +139,9 @@ void record_constraints_before_collisions(const ConstrainedSystem& system, const
   evaluate_constraints(system, q, v, bodies, pw, pw.C_before, pw.C_dot_before);
 }
 
-ConstraintProjection project_constraints_after_collisions(const ConstrainedSystem& system, VecX& q,
-                                                          VecX& v,
-                                                          std::vector<BodyWorkspace>& bodies,
-                                                          ConstraintWorkspace& cw,
-                                                          ConstraintProjectionWorkspace& pw,
-                                                          Real dt) {
+ConstraintProjection project_constraints_after_collisions(
+    const ConstrainedSystem& system, VecX& q, VecX& v, std::vector<BodyWorkspace>& bodies,
+    ConstraintWorkspace& cw, ConstraintProjectionWorkspace& pw, Real dt) {
   ConstraintProjection result;
   const std::vector<PointConstraintModel>& points = system.constraints.points;
   if (points.empty()) return result;
@@ -216,7 +213,8 @@ ConstraintProjection project_constraints_after_collisions(const ConstrainedSyste
       auto vb = body_v(body, v);
       velocity_of(vb) += pw.R[b] * linear_part(delta);
       omega_of(vb) += angular_part(delta);
-      if (body.n_s > 0) shape_rate_of(body.layout, vb) += delta.segment(BodyLayout::kShapeInV, body.n_s);
+      if (body.n_s > 0)
+        shape_rate_of(body.layout, vb) += delta.segment(BodyLayout::kShapeInV, body.n_s);
     }
     update_frames(system, q, v, bodies, pw);
     evaluate_constraints(system, q, v, bodies, pw, pw.C, pw.C_dot);

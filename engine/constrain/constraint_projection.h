@@ -28,15 +28,14 @@
 namespace pbm {
 
 struct ConstraintProjectionWorkspace {
-  VecX C_before, C_dot_before;  // 3 k-bar, as the integrator left them
-  VecX C, C_dot, rhs, lambda;   // 3 k-bar
-  std::vector<Mat3> R;          // per body: the rotation of its current quaternion
-  std::vector<char> node_ends;  // per body: has an end on a node (needs its kinematics)
+  VecX C_before, C_dot_before;    // 3 k-bar, as the integrator left them
+  VecX C, C_dot, rhs, lambda;     // 3 k-bar
+  std::vector<Mat3> R;            // per body: the rotation of its current quaternion
+  std::vector<char> node_ends;    // per body: has an end on a node (needs its kinematics)
   std::vector<char> constrained;  // per body: has any end
 };
 
-void init_constraint_projection(const ConstrainedSystem& system,
-                                ConstraintProjectionWorkspace& pw);
+void init_constraint_projection(const ConstrainedSystem& system, ConstraintProjectionWorkspace& pw);
 
 // Records C and C-dot of every point constraint at (q, v): the state the integrator left.
 void record_constraints_before_collisions(const ConstrainedSystem& system, const VecX& q,
@@ -44,11 +43,11 @@ void record_constraints_before_collisions(const ConstrainedSystem& system, const
                                           ConstraintProjectionWorkspace& pw);
 
 struct ConstraintProjection {
-  bool ran = false;          // whether the collisions opened any constraint (and it was undone)
-  Real opened = 0;           // largest |C - C_before| the collisions made [m]
-  Real opened_rate = 0;      // largest |C-dot - C-dot_before| [m/s]
-  Real residual = 0;         // largest |C - C_before| after the projection [m]
-  Real residual_rate = 0;    // the same for C-dot [m/s]
+  bool ran = false;        // whether the collisions opened any constraint (and it was undone)
+  Real opened = 0;         // largest |C - C_before| the collisions made [m]
+  Real opened_rate = 0;    // largest |C-dot - C-dot_before| [m/s]
+  Real residual = 0;       // largest |C - C_before| after the projection [m]
+  Real residual_rate = 0;  // the same for C-dot [m/s]
 };
 
 // An opening |C - C_before| + dt |C-dot - C-dot_before| up to this is left to Baumgarte's
@@ -58,11 +57,8 @@ inline constexpr Real kNegligibleOpening = 1e-7;
 // Restores C and C-dot to the recorded values by changing q and v in place (see above), unless
 // the collisions of this substep of length dt opened them negligibly. Needs every constrained
 // body's factored mass block (the substep's last, or the collision stage's).
-ConstraintProjection project_constraints_after_collisions(const ConstrainedSystem& system, VecX& q,
-                                                          VecX& v,
-                                                          std::vector<BodyWorkspace>& bodies,
-                                                          ConstraintWorkspace& cw,
-                                                          ConstraintProjectionWorkspace& pw,
-                                                          Real dt);
+ConstraintProjection project_constraints_after_collisions(
+    const ConstrainedSystem& system, VecX& q, VecX& v, std::vector<BodyWorkspace>& bodies,
+    ConstraintWorkspace& cw, ConstraintProjectionWorkspace& pw, Real dt);
 
 }  // namespace pbm

@@ -15,25 +15,25 @@
 namespace pbm {
 
 enum class StepStage {
-  drive,                // tracks -> gravity, rest shapes, spring targets, obstacle placement
-  step_start,           // what later stages need of the substep's start (self-collision)
-  forces,               // kinematics, elastic forces (3.43), nodal loads, the mass block (3.16)
-  contact_forces,       // the obstacles' push (5.11) and friction (5.12)
-  controllers,          // joint controllers (ch. 15.4)
-  dynamics,             // the solve of (3.13) / (3.51)
-  constraints,          // constraint forces (7.33) and hinge springs
-  kinematics,           // q-dot from v: quaternion rates (sec. 3.1.1), first-order velocities
-  integrate,            // the integrator's own arithmetic, between rate evaluations
-  renormalize,          // unit quaternions after the step (sec. 6.1)
-  impacts,              // impacts of figures (ch. 15.3)
-  body_collisions,      // between bodies (5.2.2)
-  obstacle_collisions,  // with obstacles (5.2.1)
-  velocity_split,       // the mean-axis split restored where no obstacle stage did it
-  self_collisions,      // a local body with itself
-  constraint_projection,  // constraints restored to what the collisions found (issue 12)
-  liquid,               // the liquid's grid (ch. 16)
-  coupling,             // liquid and solids (ch. 16)
-  measure,              // energies and distances for the stability guard
+  drive,                  // tracks -> gravity, rest shapes, spring targets, obstacle placement
+  step_start,             // what later stages need of the substep's start (self-collision)
+  forces,                 // kinematics, elastic forces (3.43), nodal loads, the mass block (3.16)
+  contact_forces,         // the obstacles' push (5.11) and friction (5.12)
+  controllers,            // joint controllers (ch. 15.4)
+  dynamics,               // the solve of (3.13) / (3.51)
+  constraints,            // constraint forces (7.33) and hinge springs
+  kinematics,             // q-dot from v: quaternion rates (sec. 3.1.1), first-order velocities
+  integrate,              // the integrator's own arithmetic, between rate evaluations
+  renormalize,            // unit quaternions after the step (sec. 6.1)
+  impacts,                // impacts of figures (ch. 15.3)
+  body_collisions,        // between bodies (5.2.2)
+  obstacle_collisions,    // with obstacles (5.2.1)
+  velocity_split,         // the mean-axis split restored where no obstacle stage did it
+  self_collisions,        // a local body with itself
+  constraint_projection,  // C, C-dot restored to their values before the collisions
+  liquid,                 // the liquid's grid (ch. 16)
+  coupling,               // liquid and solids (ch. 16)
+  measure,                // energies and distances for the stability guard
   count
 };
 inline constexpr int kStageCount = static_cast<int>(StepStage::count);
