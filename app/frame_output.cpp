@@ -1,5 +1,7 @@
 #include "frame_output.h"
 
+#include "sim/level_of_detail.h"
+
 #include <nlohmann/json.hpp>
 
 namespace pbm {
@@ -57,6 +59,12 @@ std::string frame_stats_json(const World& world, const FrameStats& s, long frame
       model.obstacles.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.min_distance);
   j["contact_nodes"] = s.contacts;
   if (!model.constraints.empty()) j["constraint_violation"] = s.constraint_violation;
+  if (auto_levels_present(model)) {
+    j["dormant_bodies"] = s.levels.dormant_bodies;
+    j["level_switches"] = s.levels.switches;
+    j["level_energy_jump"] = s.levels.energy_jump;
+    j["level_position_jump"] = s.levels.position_jump;
+  }
   if (!s.notes.empty()) j["notes"] = s.notes;
   // Every stage and every subsystem on its own clock (sim/step_stage.h): a stage no subsystem of
   // the scene runs in reports 0, a subsystem the scene lacks is left out.

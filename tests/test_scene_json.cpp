@@ -183,7 +183,7 @@ TEST(SceneJsonErrors, WrongTypes) {
   expect_error(j, "name", "must be a string");
   j = full_scene();
   j["bodies"][0]["level"] = "soft";
-  expect_error(j, "bodies[0].level", "must be one of \"rigid\", \"global\", \"local\"");
+  expect_error(j, "bodies[0].level", "must be one of \"rigid\", \"global\", \"local\", \"auto\"");
   j = full_scene();
   j["solver"]["contact_step_reduction"] = 1;
   expect_error(j, "solver.contact_step_reduction", "must be true or false");

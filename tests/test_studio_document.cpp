@@ -69,7 +69,7 @@ TEST(StudioDocument, TheFormatGivesUnitsAndRanges) {
   EXPECT_EQ(describe_field("/camera/fov").range, "(0, 180)");
   EXPECT_NE(describe_field("/solver/dt").description.find("s"), std::string::npos);
   const FieldInfo level = describe_field("/bodies/0/level");
-  EXPECT_EQ(level.choices, (std::vector<std::string>{"rigid", "global", "local"}));
+  EXPECT_EQ(level.choices, (std::vector<std::string>{"rigid", "global", "local", "auto"}));
 }
 
 TEST(StudioDocument, EveryPresetIsAValidBody) {

@@ -494,6 +494,13 @@ ContactResolution resolve_penetrations(Obstacles obstacles, const BodyModel& bod
     if (deepest(obstacles, ws.x[i], o, n) < 0) nodes.push_back(i);
   }
   result.penetrating_nodes = static_cast<int>(nodes.size());
+  // A dormant "auto" body out of every obstacle has nothing to resolve and no split to restore
+  // (its d-dot is zero); one a collision reached is dented as a local body is, and its
+  // displacements are switched on at the next frame (sim/level_of_detail.h).
+  if (ws.dormant && nodes.empty()) {
+    if (!obstacles.empty()) result.min_distance = min_obstacle_distance(obstacles, ws);
+    return result;
+  }
   const bool compliant = body.has_local && implicit && !nodes.empty();
   if (compliant) {
     resolve_compliant(obstacles, body, q, v, ws);

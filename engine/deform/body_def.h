@@ -13,7 +13,10 @@
 namespace pbm {
 
 // What a body pays for (docs/architecture.md): its DOF vector holds only these coordinates.
-enum class DeformLevel { rigid, global, local };  // q_c,q_theta | + q_s | + q_s, q_d
+// q_c,q_theta | + q_s | + q_s, q_d | automatic: the state of `local`, its displacements switched
+// on near contact or a drag and off (held at zero, run as `global`) elsewhere
+// (sim/level_of_detail.h)
+enum class DeformLevel { rigid, global, local, automatic };
 // Tessellation of (u,v): quads + pole triangles (fig. 4.1) or all triangles (fig. 4.2).
 enum class TessellationKind { quads, triangles };
 // Second-order Lagrangian model (3.13) for animation, first-order model (3.51) for shaping.

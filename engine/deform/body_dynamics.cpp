@@ -249,7 +249,7 @@ void compute_body_kinematics(const BodyModel& body, const Eigen::Ref<const VecX>
 
 void compute_elastic_forces(const BodyModel& body, const Eigen::Ref<const VecX>& q,
                             BodyWorkspace& ws) {
-  if (!body.has_local) return;
+  if (!body.has_local || ws.dormant) return;  // a dormant body's q_d is zero
   ws.K_q.setZero();
   add_membrane_forces(body.tessellation, body.stiffness, displacement_of(body.layout, q), ws.K_q);
 }
@@ -348,6 +348,9 @@ void solve_body_dynamics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
   const int ns = body.n_s;
   const BodySlices sl = slices(body);
   const bool second = body.order == DynamicsOrder::second;
+  // A dormant "auto" body runs as a global one: d-ddot = 0 keeps q_d = d-dot = 0, and the
+  // membrane and the local solve are skipped (sim/level_of_detail.h).
+  const bool local = body.has_local && !ws.dormant;
   const Mat3 Rt = ws.R.transpose();
   ws.r_g.setZero();
   ws.b.setZero();
@@ -355,7 +358,7 @@ void solve_body_dynamics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
     Vec3 r = Rt * ws.force[i];                        // f_i in the body frame (3.48)
     if (second) r -= body.node_mass[i] * ws.a_vp[i];  // g_q (3.24)
     add_Pt(body, ws, i, r, ws.r_g);
-    if (body.has_local) {
+    if (local) {
       r -= ws.K_q.segment<3>(3 * i);
       add_Pt(body, ws, i, r, ws.b);
     }
@@ -386,7 +389,8 @@ void solve_body_dynamics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
   velocity_of(out) = ws.R * linear_part(alpha);
   omega_of(out) = angular_part(alpha);
   if (ns > 0) out.segment(sl.s_v, ns) = alpha.tail(ns);
-  if (body.has_local) {
+  if (body.has_local && !local) out.segment(sl.d_v, 3 * n).setZero();
+  if (local) {
     solve_generalized_mass(ws, ws.b, ws.gamma);
     for (int i = 0; i < n; ++i) {
       Vec3 r = Rt * ws.force[i] - ws.K_q.segment<3>(3 * i);
@@ -417,7 +421,7 @@ void resplit_velocities(const BodyModel& body, const Eigen::Ref<const VecX>& q, 
 
 void restore_velocity_split(const BodyModel& body, const Eigen::Ref<const VecX>& q,
                             Eigen::Ref<VecX> v, BodyWorkspace& ws) {
-  if (!body.has_local) return;
+  if (!body.has_local || ws.dormant) return;
   compute_body_kinematics(body, q, v, ws, false);
   factor_generalized_mass(body, q, ws);
   resplit_velocities(body, q, v, ws);

@@ -123,7 +123,8 @@ BodyModel build_body_model(const BodyDef& def, Real tau, const std::string& file
   body.shape = def.shape;
   body.n_shape = shape_parameter_count(def.shape);
   body.n_s = def.level == DeformLevel::rigid ? 0 : body.n_shape;
-  body.has_local = def.level == DeformLevel::local;
+  body.has_local = def.level == DeformLevel::local || def.level == DeformLevel::automatic;
+  body.auto_level = def.level == DeformLevel::automatic;
   body.tessellation = tessellate(def.tessellation);
   const int n = body.tessellation.node_count();
   body.damping = def.material.damping;

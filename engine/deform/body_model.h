@@ -38,9 +38,12 @@ struct BodyModel {
   DeformLevel level = DeformLevel::local;
   DynamicsOrder order = DynamicsOrder::second;
   ShapeKind shape = ShapeKind::superquadric;
-  int n_s = 0;                   // global DOFs in the State (0 for rigid bodies)
-  int n_shape = 0;               // shape_parameter_count(shape): size of q_s whether dynamic or not
-  bool has_local = false;        // q_d present
+  int n_s = 0;             // global DOFs in the State (0 for rigid bodies)
+  int n_shape = 0;         // shape_parameter_count(shape): size of q_s whether dynamic or not
+  bool has_local = false;  // q_d present
+  // level "auto": q_d present, held at zero while the body is far from contact and unpulled
+  // (State::dormant, sim/level_of_detail.h)
+  bool auto_level = false;
   VecX q_s_fixed;                // shape of a rigid body (n_shape)
   VecX q_s0;                     // rest values (3.31), before tracks (n_shape)
   VecX k_s;                      // global stiffness diag (3.32) (n_shape)

@@ -130,9 +130,12 @@ struct BodyWorkspace {
   VecX shape_key;  // q_s at which s (and J if shape_has_J) were evaluated
   VecX mass_key;   // body q at which A was last factored (empty = none)
   bool shape_has_J = false;
-  std::vector<Vec3> d_dot_body;        // d-dot per node, body frame (zero without q_d)
-  Vec3 omega = Vec3::Zero();           // angular velocity, body frame
-  Real dt = 0;                         // substep in progress (rate-based contact damping, implicit)
+  std::vector<Vec3> d_dot_body;  // d-dot per node, body frame (zero without q_d)
+  Vec3 omega = Vec3::Zero();     // angular velocity, body frame
+  Real dt = 0;                   // substep in progress (rate-based contact damping, implicit)
+  // A body of level "auto" with its displacements off this frame: a copy of State::dormant,
+  // set at each frame's start (sim/level_of_detail.h). Its q_d and d-dot are zero and stay so.
+  bool dormant = false;
   ImplicitMembraneWorkspace implicit;  // empty unless the integrator is "implicit"
   const Vec3& d_dot(const BodyModel&, int i) const { return d_dot_body[i]; }
 };

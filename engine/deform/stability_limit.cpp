@@ -49,6 +49,8 @@ StabilityLimit explicit_stability_limit(const BodyModel& body, int iterations) {
                             : nu > 0 ? ws2 / nu
                                      : 0.0;
   limit.dt_implicit = lambda_shape > 0 ? 2.0 / lambda_shape : inf;
+  limit.dt_euler_global = limit.dt_implicit;
+  limit.dt_rk4_global = lambda_shape > 0 ? 2.78 / lambda_shape : inf;
   return limit;
 }
 

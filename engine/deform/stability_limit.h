@@ -26,6 +26,9 @@ struct StabilityLimit {
   // The implicit integrator's: Euler's limit on the global block alone (the membrane is taken
   // implicitly, deform/implicit_membrane.h).
   Real dt_implicit = 0;
+  // Euler's and RK4's limits on the global block alone: a body of level "auto" while its
+  // displacements are off (sim/level_of_detail.h). dt_euler_global equals dt_implicit.
+  Real dt_euler_global = 0, dt_rk4_global = 0;
 };
 
 // Power iteration on M^-1 K_dd: `iterations` products, started from an alternating pattern that

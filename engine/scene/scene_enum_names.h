@@ -14,9 +14,10 @@ namespace pbm {
 template <typename Enum, std::size_t N>
 using NameTable = std::array<std::pair<std::string_view, Enum>, N>;
 
-inline constexpr NameTable<DeformLevel, 3> kDeformLevelNames{{{"rigid", DeformLevel::rigid},
+inline constexpr NameTable<DeformLevel, 4> kDeformLevelNames{{{"rigid", DeformLevel::rigid},
                                                               {"global", DeformLevel::global},
-                                                              {"local", DeformLevel::local}}};
+                                                              {"local", DeformLevel::local},
+                                                              {"auto", DeformLevel::automatic}}};
 inline constexpr NameTable<DynamicsOrder, 2> kDynamicsOrderNames{
     {{"second", DynamicsOrder::second}, {"first", DynamicsOrder::first}}};
 inline constexpr NameTable<ShapeKind, 3> kShapeKindNames{{{"superquadric", ShapeKind::superquadric},

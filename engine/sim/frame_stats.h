@@ -20,6 +20,14 @@ struct BodyFrameStats {
   Vec3 position = Vec3::Zero();   // q_c [m]
 };
 
+// Levels of detail chosen automatically (sim/level_of_detail.h) at the frame's start.
+struct LevelStats {
+  int dormant_bodies = 0;  // "auto" bodies running without their displacements this frame
+  int switches = 0;        // displacements switched on or off at its start
+  Real energy_jump = 0;    // largest energy a body's switch off removed [J]
+  Real position_jump = 0;  // largest node displacement it zeroed [m]
+};
+
 struct FrameStats {
   Real time = 0;                                 // of the state measured [s]
   double wall_seconds = 0;                       // the whole frame, guard and retries included
@@ -41,6 +49,7 @@ struct FrameStats {
   std::array<double, kSubsystemCount> subsystem_seconds{};  // by SubsystemId
   std::vector<BodyFrameStats> bodies;
   BodyCollisionStats body_collisions;  // of the frame's last substep
+  LevelStats levels;
   // Warnings about the model's solvers, '; '-separated (a constraint loop's dense fallback,
   // Baumgarte gains too stiff for dt): empty when all is well.
   std::string notes;

@@ -44,26 +44,12 @@ TrackModel build_track(const Scene& scene, int t) {
 // stability guard sees only once it is large. rk45 adapts its own steps and needs no limit; the
 // implicit integrator takes the membrane at the step's end and needs only the global block's.
 void limit_substep(Model& model) {
-  model.substep = model.solver.dt;
-  if (model.solver.integrator == IntegratorKind::rk45) return;
-  constexpr Real kSafety = 0.9;
-  // The substep the frames take at solver.dt: a frame is divided into equal substeps.
+  const BodyModel* limiting = nullptr;
+  model.substep = stable_substep(model, {}, &limiting);
+  if (limiting == nullptr) return;
   const Real frame = 1.0 / model.solver.fps;
   const Real taken = frame / std::max(1.0, std::ceil(frame / model.solver.dt - 1e-9));
-  const BodyModel* limiting = nullptr;
-  Real limit = taken;
-  for (const BodyModel& body : model.bodies) {
-    const IntegratorKind kind = model.solver.integrator;
-    const Real stable = kind == IntegratorKind::euler      ? body.stability.dt_euler
-                        : kind == IntegratorKind::implicit ? body.stability.dt_implicit
-                                                           : body.stability.dt_rk4;
-    if (kSafety * stable < limit) {
-      limit = kSafety * stable;
-      limiting = &body;
-    }
-  }
-  if (limiting == nullptr) return;
-  model.substep = limit;
+  const Real limit = model.substep;
   char note[400];
   const StabilityLimit& s = limiting->stability;
   if (s.omega >= s.omega_shape && model.solver.integrator != IntegratorKind::implicit) {
@@ -71,7 +57,7 @@ void limit_substep(Model& model) {
                   "body '%s': the substep %.3g s (solver.dt %g s) is past its explicit stability "
                   "limit %.3g s (fastest membrane mode %.4g rad/s, damping %g 1/s); substeps "
                   "shortened to %.3g s",
-                  limiting->name.c_str(), taken, model.solver.dt, limit / kSafety, s.omega,
+                  limiting->name.c_str(), taken, model.solver.dt, limit / kStabilitySafety, s.omega,
                   limiting->damping, limit);
   } else {
     std::snprintf(note, sizeof note,
@@ -79,13 +65,45 @@ void limit_substep(Model& model) {
                   "limit %.3g s of its shape parameters (inertia floor k_s tau^2, "
                   "solver.shape_inertia_time %g s: modes up to %.4g rad/s); substeps shortened "
                   "to %.3g s",
-                  limiting->name.c_str(), taken, model.solver.dt, limit / kSafety,
+                  limiting->name.c_str(), taken, model.solver.dt, limit / kStabilitySafety,
                   1.0 / s.omega_shape, s.omega_shape, limit);
   }
   model.notes += (model.notes.empty() ? "" : "; ") + std::string(note);
 }
 
 }  // namespace
+
+Real stable_substep(const Model& model, std::span<const std::uint8_t> dormant,
+                    const BodyModel** limiting) {
+  if (model.solver.integrator == IntegratorKind::rk45) return model.solver.dt;
+  // The substep the frames take at solver.dt: a frame is divided into equal substeps.
+  const Real frame = 1.0 / model.solver.fps;
+  const Real taken = frame / std::max(1.0, std::ceil(frame / model.solver.dt - 1e-9));
+  Real limit = taken;
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    const BodyModel& body = model.bodies[b];
+    const StabilityLimit& s = body.stability;
+    // A dormant "auto" body runs as a global one: only its global block limits the step.
+    const bool global_only = b < dormant.size() && dormant[b] != 0;
+    Real stable = 0;
+    switch (model.solver.integrator) {
+      case IntegratorKind::euler:
+        stable = global_only ? s.dt_euler_global : s.dt_euler;
+        break;
+      case IntegratorKind::implicit:
+        stable = s.dt_implicit;
+        break;
+      default:
+        stable = global_only ? s.dt_rk4_global : s.dt_rk4;
+        break;
+    }
+    if (kStabilitySafety * stable < limit) {
+      limit = kStabilitySafety * stable;
+      if (limiting) *limiting = &body;
+    }
+  }
+  return limit < taken ? limit : model.solver.dt;
+}
 
 Model build_model(const Scene& scene) {
   Model model;

@@ -6,6 +6,8 @@
 // its blocks in deform/body_layout.h).
 #pragma once
 
+#include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -44,13 +46,22 @@ struct Model {
   // The longest substep advance_frame may take [s]: solver.dt, or shorter where a body's explicit
   // stability limit (deform/stability_limit.h) with the configured integrator needs it (the
   // shortening is one of the notes). rk45 chooses its own steps inside each substep.
-  Real substep = 0;
+  Real substep = 0;  // every body at its own level ("auto" bodies awake): stable_substep
   // Warnings about the solvers for every frame's stats, '; '-separated (constraints.notes).
   std::string notes;
   SnapshotGeometry snapshot_geometry;  // shared by every snapshot (sim/snapshot.h), drawing only
 };
 
 // Throws pbm::Error (file, path) when the scene cannot be compiled.
+// Fraction of the explicit stability limit a substep may take.
+inline constexpr Real kStabilitySafety = 0.9;
+
+// The longest substep no body's explicit limit forbids (solver.dt when none does), the bodies
+// marked in `dormant` (an empty span: none) limited by their global block alone
+// (sim/level_of_detail.h); `limiting`, when given, is set to the body that limits it.
+Real stable_substep(const Model& model, std::span<const std::uint8_t> dormant,
+                    const BodyModel** limiting = nullptr);
+
 Model build_model(const Scene& scene);
 
 }  // namespace pbm

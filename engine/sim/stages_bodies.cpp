@@ -59,7 +59,7 @@ void body_dynamics(const RateContext& c) {
     auto out = body_v(body, c.v_dot);
     BodyWorkspace& bw = c.ws.bodies[b];
     solve_body_dynamics(body, body_q(body, c.q), body_v(body, c.v), bw, out);
-    if (c.model.solver.integrator == IntegratorKind::implicit) {
+    if (c.model.solver.integrator == IntegratorKind::implicit && !bw.dormant) {
       implicit_membrane_rates(body, body_v(body, c.v), bw, bw.dt, out);
     }
   }

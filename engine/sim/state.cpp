@@ -9,6 +9,7 @@ State initial_state(const Model& model) {
   st.time = 0;
   st.q.setZero(model.n_q);
   st.v.setZero(model.n_v);
+  st.dormant.assign(model.bodies.size(), 0);
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     const BodyModel& body = model.bodies[b];
     const BodyDef& def = model.scene.bodies[b];
@@ -20,6 +21,8 @@ State initial_state(const Model& model) {
     if (body.n_s > 0) shape_of(body.layout, q) = body.q_s_fixed;
     velocity_of(v) = def.velocity;
     omega_of(v) = rotation_from_quaternion(quat).transpose() * def.angular_velocity;
+    // An "auto" body starts dormant; the first frame wakes it where it must be awake.
+    st.dormant[b] = body.auto_level ? 1 : 0;
   }
   return st;
 }
@@ -40,6 +43,7 @@ std::uint64_t hash_state(const State& state) {
   mix(&state.contact_nodes, sizeof state.contact_nodes);
   mix(&state.energy_surplus, sizeof state.energy_surplus);
   mix(&state.energy_scale, sizeof state.energy_scale);
+  mix(state.dormant.data(), state.dormant.size());
   return h;
 }
 

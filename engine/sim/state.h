@@ -29,6 +29,9 @@ struct State {
   // [J], what the surplus is judged against.
   Real energy_surplus = 0;
   Real energy_scale = 0;
+  // Per body: 1 while a body of level "auto" runs without its displacements (q_d = d-dot = 0;
+  // sim/level_of_detail.h), decided at a frame's start; 0 for every other body.
+  std::vector<std::uint8_t> dormant;
 };
 
 State initial_state(const Model& model);

@@ -19,6 +19,13 @@
 
 namespace pbm {
 
+// A body's bounding sphere and how far it may move in a lookahead (sim/level_of_detail.h).
+struct BodyReach {
+  Vec3 centre = Vec3::Zero();
+  Real radius = 0;  // of the nodes about the centre [m]
+  Real travel = 0;  // how far a point of it may move in the lookahead [m]
+};
+
 struct Workspace {
   // Bodies (deform/): per-body dynamics and contact scratch; the velocities first-order bodies
   // (3.51) solved for in the last rate evaluation (n_v).
@@ -41,6 +48,7 @@ struct Workspace {
   // a substep advanced alone ends its own frame). The mean-axis split of bodies without an
   // obstacle stage is restored only then (sim/stages_bodies.h).
   bool substep_ends_frame = true;
+  std::vector<BodyReach> level_reach;  // levels of detail chosen at a frame's start
   StageClock clock;
   // advance_frame's own: the frame's start (its retry point) and the guard's measurements.
   State frame_start;

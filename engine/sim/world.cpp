@@ -6,6 +6,7 @@
 
 #include "core/bits.h"
 #include "core/wall_clock.h"
+#include "sim/level_of_detail.h"
 
 namespace pbm {
 namespace {
@@ -235,8 +236,6 @@ FrameResult advance_frame(const World& world, const Inputs& inputs, State& state
   ws.clock.reset();
   const Real frame_dt = 1.0 / model.solver.fps;
   const Real t_end = (std::round(state.time * model.solver.fps) + 1.0) / model.solver.fps;
-  const int base_substeps =
-      std::max(1, static_cast<int>(std::ceil(frame_dt / model.substep - 1e-9)));
   FrameStats& before = ws.before;
   const Workspace::Measured& last = ws.last_measured;
   if (last.valid && last.time == state.time && same_bits(last.q, state.q) &&
@@ -245,6 +244,14 @@ FrameResult advance_frame(const World& world, const Inputs& inputs, State& state
   } else {
     measure_state(world, inputs, state, ws, before);
   }
+  // Levels of detail for the whole frame, its retries included (sim/level_of_detail.h): a body
+  // put to sleep changed its state, which is measured again.
+  LevelStats levels;
+  if (auto_levels_present(model) && choose_levels(model, state, ws, levels)) {
+    measure_state(world, inputs, state, ws, before);
+  }
+  const int base_substeps =
+      std::max(1, static_cast<int>(std::ceil(frame_dt / frame_substep(model, state) - 1e-9)));
   const Allowance allowance = energy_allowance(world, inputs, state, t_end, ws);
   const Real floor = allowance.floor;
   state.energy_scale = std::max(state.energy_scale, before.kinetic + before.elastic);
@@ -345,6 +352,7 @@ FrameResult advance_frame(const World& world, const Inputs& inputs, State& state
       stats.evaluations = evaluations;
       stats.contacts = state.contact_nodes;
       stats.body_collisions = ws.body_collision_stats;
+      stats.levels = levels;
       stats.notes = model.notes;
       ws.clock.switch_to(StepStage::count, SubsystemId::count);
       stats.stage_seconds = ws.clock.stage_seconds;
