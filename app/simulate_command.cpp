@@ -150,6 +150,9 @@ int run_simulate(const SimulateOptions& o) {
     }
   };
   int code = 0;
+  // What the "auto" bodies saved (sim/level_of_detail.h), said at the end.
+  long dormant_body_frames = 0, body_frames = 0, level_switches = 0, substeps = 0;
+  Real level_energy_jump = 0, level_position_jump = 0;
   ProgressBar bar("simulate", n_frames);
   try {
     emit(0, sim->stats);
@@ -161,6 +164,13 @@ int run_simulate(const SimulateOptions& o) {
         break;
       }
       emit(f, sim->stats);
+      const LevelStats& levels = sim->stats.levels;
+      dormant_body_frames += levels.dormant_bodies;
+      level_switches += levels.switches;
+      level_energy_jump = std::max(level_energy_jump, levels.energy_jump);
+      level_position_jump = std::max(level_position_jump, levels.position_jump);
+      substeps += sim->stats.substeps;
+      for (const BodyModel& body : model.bodies) body_frames += body.auto_level ? 1 : 0;
       bar.update(f, "t=" + std::to_string(state.time).substr(0, 6) + "s");
     }
   } catch (const std::exception& e) {
@@ -168,6 +178,13 @@ int run_simulate(const SimulateOptions& o) {
     code = 2;
   }
   bar.finish();
+  if (body_frames > 0) {
+    spdlog::info(
+        "{}: auto levels: {} of {} body-frames without displacements, {} switches (largest "
+        "switch off {:.3g} m, {:.3g} J), {} substeps",
+        o.scene, dormant_body_frames, body_frames, level_switches, level_position_jump,
+        level_energy_jump, substeps);
+  }
   if (stats) stats << (first_stats ? "{\"frames\":[" : "") << "\n]}\n";
   return code;
 }

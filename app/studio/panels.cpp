@@ -538,6 +538,12 @@ void stats(Studio& studio) {
                 1e3 * f.subsystem_seconds[k]);
   }
   ImGui::Text("%d substeps, %d retries, %d rate evaluations", f.substeps, f.retries, f.evaluations);
+  // Levels of detail (sim/level_of_detail.h): what the "auto" bodies saved this frame.
+  if (f.levels.dormant_bodies > 0 || f.levels.switches > 0) {
+    ImGui::Text("%d auto bodies without displacements, %d switched (a switch off: %.3g m, %.3g J)",
+                f.levels.dormant_bodies, f.levels.switches, f.levels.position_jump,
+                f.levels.energy_jump);
+  }
   ImGui::Separator();
   ImGui::Text("kinetic %.4g J  elastic %.4g J  potential %.4g J", f.kinetic, f.elastic,
               f.potential);
