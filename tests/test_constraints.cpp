@@ -113,6 +113,19 @@ TEST(Constraints, SelfAssemblyDecaysAtAlpha) {
   EXPECT_LT(violation(first), 1e-4);
 }
 
+// sum m x-dot over every body of the simulation's state.
+Vec3 linear_momentum(Simulation& sim) {
+  Vec3 p = Vec3::Zero();
+  for (std::size_t b = 0; b < sim.model.bodies.size(); ++b) {
+    const BodyModel& body = sim.model.bodies[b];
+    const auto q = sim.state.q.segment(body.q_offset, body.q_size);
+    const auto v = sim.state.v.segment(body.v_offset, body.v_size);
+    compute_body_kinematics(body, q, v, sim.ws.bodies[b]);
+    p += compute_body_energy(body, q, v, Vec3::Zero(), sim.ws.bodies[b]).linear_momentum;
+  }
+  return p;
+}
+
 TEST(Constraints, TwoFreeRigidBodiesConserveLinearMomentum) {
   Scene s = assembly_scene(DynamicsOrder::second, 8);
   s.bodies[0].velocity = Vec3(1, -0.5, 0.2);
@@ -120,17 +133,7 @@ TEST(Constraints, TwoFreeRigidBodiesConserveLinearMomentum) {
   s.bodies[1].velocity = Vec3(-0.2, 0.4, 1);
   test::set_uniform_mass(s.bodies[1], 3.0);
   Simulation sim(s);
-  auto momentum = [&] {
-    Vec3 p = Vec3::Zero();
-    for (std::size_t b = 0; b < sim.model.bodies.size(); ++b) {
-      const BodyModel& body = sim.model.bodies[b];
-      const auto q = sim.state.q.segment(body.q_offset, body.q_size);
-      const auto v = sim.state.v.segment(body.v_offset, body.v_size);
-      compute_body_kinematics(body, q, v, sim.ws.bodies[b]);
-      p += compute_body_energy(body, q, v, Vec3::Zero(), sim.ws.bodies[b]).linear_momentum;
-    }
-    return p;
-  };
+  auto momentum = [&] { return linear_momentum(sim); };
   const Vec3 p0 = momentum();
   advance_to(sim, 3.0);
   const Vec3 p1 = momentum();
@@ -160,17 +163,7 @@ TEST(Constraints, ProjectionAfterACollisionRestoresCAndItsRateWithInternalImpuls
   init_constraint_projection(system, pw);
   record_constraints_before_collisions(system, sim.state.q, sim.state.v, sim.ws.bodies, pw);
   const VecX C_before = pw.C_before, C_dot_before = pw.C_dot_before;
-  auto momentum = [&] {
-    Vec3 p = Vec3::Zero();
-    for (std::size_t b = 0; b < sim.model.bodies.size(); ++b) {
-      const BodyModel& body = sim.model.bodies[b];
-      const auto q = sim.state.q.segment(body.q_offset, body.q_size);
-      const auto v = sim.state.v.segment(body.v_offset, body.v_size);
-      compute_body_kinematics(body, q, v, sim.ws.bodies[b]);
-      p += compute_body_energy(body, q, v, Vec3::Zero(), sim.ws.bodies[b]).linear_momentum;
-    }
-    return p;
-  };
+  auto momentum = [&] { return linear_momentum(sim); };
   // The jump: 2 mm and 0.02 rad of position, 0.5 m/s and 1 rad/s of velocity.
   const BodyModel& a = sim.model.bodies[0];
   auto qa = body_q(a, sim.state.q);
