@@ -88,7 +88,9 @@ int run_bench(const BenchOptions& o) {
   if (o.what == "constraints") return run_bench_constraints(o.max_constraints);
   if (o.what == "drag") return run_bench_drag(o.scene, std::max(1, o.steps));
   if (o.what != "deform") {
-    spdlog::error("unknown benchmark '{}' (known: deform, render, constraints, drag)", o.what);
+    spdlog::error(
+        "unknown benchmark '{}' (known: deform, render, constraints, drag, tradeoff, realtime)",
+        o.what);
     return 2;
   }
   Scene scene;

@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include "bench_command.h"
+#include "bench_realtime.h"
 #include "bench_tradeoff.h"
 #include "render_command.h"
 #include "simulate_command.h"
@@ -49,8 +50,10 @@ int main(int argc, char** argv) {
       "bench",
       "benchmarks: deform (ours vs Bullet btSoftBody), render (ours vs a bare draw), "
       "constraints (dense vs sparse constraint solve), drag (a mouse-drag move vs recompiling), "
-      "tradeoff <scene> (error against cost over a sweep of the knobs: CSV and PNG)");
-  bench_cmd->add_option("what", bench.what, "deform | render | constraints | drag | tradeoff")
+      "tradeoff <scene> (error against cost over a sweep of the knobs: CSV and PNG), realtime "
+      "[folder] (the real-time factor of every scene in it, default scenes)");
+  bench_cmd
+      ->add_option("what", bench.what, "deform | render | constraints | drag | tradeoff | realtime")
       ->required();
   bench_cmd->add_option("--steps", bench.steps, "steps timed per size (drag: frames of moves)");
   bench_cmd->add_option("--scene", bench.scene,
@@ -60,11 +63,14 @@ int main(int argc, char** argv) {
                         "constraints: largest number of constraints to run");
 
   pbm::TradeoffCommandOptions tradeoff;
-  bench_cmd->add_option("target", tradeoff.scene, "tradeoff: the scene JSON file");
+  bench_cmd->add_option("target", tradeoff.scene,
+                        "tradeoff: the scene JSON file; realtime: the folder of scenes");
   bench_cmd->add_option("--knobs", tradeoff.knobs,
                         "tradeoff: knobs to sweep, of dt,integrator,tolerance,resolution "
                         "(default dt,integrator,resolution)");
-  bench_cmd->add_option("--seconds", tradeoff.seconds, "tradeoff: simulated time per run (2)");
+  bench_cmd->add_option("--seconds", tradeoff.seconds,
+                        "tradeoff, realtime: simulated time per run (2; realtime 10, at most the "
+                        "scene's duration)");
   bench_cmd->add_option("--reference-tolerance", tradeoff.reference_tolerance,
                         "tradeoff: rk45 tolerance of the reference run (1e-7)");
   bench_cmd->add_option("--out", tradeoff.out, "tradeoff: folder of the CSV and PNG (out)");
@@ -82,6 +88,11 @@ int main(int argc, char** argv) {
   if (*bench_cmd && bench.what == "tradeoff") {
     if (tradeoff.scene.empty()) tradeoff.scene = bench.scene;
     return pbm::run_bench_tradeoff(tradeoff);
+  }
+  if (*bench_cmd && bench.what == "realtime") {
+    const bool seconds_given = bench_cmd->count("--seconds") > 0;
+    return pbm::run_bench_realtime(tradeoff.scene.empty() ? "scenes" : tradeoff.scene,
+                                   seconds_given ? tradeoff.seconds : 10.0);
   }
   if (*bench_cmd) return pbm::run_bench(bench);
   return 2;

@@ -5,6 +5,7 @@
 
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -106,6 +107,28 @@ TEST(Cli, WritesStatsAndAMeshSequence) {
     std::snprintf(name, sizeof name, "frame_%05d.ply", f);
     EXPECT_TRUE(fs::exists(dir / "meshes" / name)) << name;
   }
+}
+
+// `pbm bench realtime` reports a row per scene of the folder; a folder without scenes is bad
+// input. (What the factors are is measured, not asserted: speed belongs to benchmarks.)
+TEST(Cli, BenchRealtimeReportsEveryScene) {
+  const fs::path dir = temp_dir() / "realtime";
+  fs::create_directories(dir);
+  fs::copy_file(scene("jello-ball"), dir / "jello-ball.json", fs::copy_options::overwrite_existing);
+  const Result r = pbm("bench realtime " + dir.string() + " --seconds 0.2");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const std::size_t row = r.output.find("\njello-ball ");
+  ASSERT_NE(row, std::string::npos) << r.output;
+  double fps = 0, whole = 0;
+  long frames = 0;
+  ASSERT_EQ(
+      std::sscanf(r.output.c_str() + row + 1, "jello-ball %lf %ld %lf", &fps, &frames, &whole), 3)
+      << r.output;
+  EXPECT_EQ(frames, std::lround(0.2 * fps));
+  EXPECT_GT(whole, 0);
+  const fs::path empty = temp_dir() / "no_scenes";
+  fs::create_directories(empty);
+  EXPECT_EQ(pbm("bench realtime " + empty.string()).code, 2);
 }
 
 struct BadInput {

@@ -60,6 +60,12 @@ void size_workspace(std::span<const BodyModel> bodies, BodyCollisionWorkspace& c
   }
   cws.pairs.reserve(2 * triangles);
   cws.candidates.reserve(6 * triangles);
+  cws.gathered.reserve(6 * triangles);
+  cws.node_base.assign(bodies.size() + 1, 0);
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    cws.node_base[b + 1] = cws.node_base[b] + bodies[b].n_nodes();
+  }
+  cws.node_start.assign(nodes + 1, 0);
   cws.contacts.reserve(nodes);
 }
 
@@ -219,7 +225,8 @@ void make_basis(const Vec3& n, Mat3& basis) {
 // Steps 1 and 2: candidate triangle pairs, their intersection test, node candidates.
 void gather_candidates(const BodyCollisionModel& model, std::span<const BodyModel> bodies,
                        BodyCollisionWorkspace& cws, BodyCollisionStats& stats) {
-  cws.candidates.clear();
+  std::vector<BodyCollisionWorkspace::Candidate>& gathered = cws.gathered;
+  gathered.clear();
   const int n_bodies = static_cast<int>(bodies.size());
   for (int a = 0; a < n_bodies; ++a) {
     for (int b = a + 1; b < n_bodies; ++b) {
@@ -239,12 +246,28 @@ void gather_candidates(const BodyCollisionModel& model, std::span<const BodyMode
                                 sb.x[tb[2]])) {
           ++stats.intersecting_triangles;
         }
-        for (int v : ta) cws.candidates.push_back({a, v, b, p[1]});
-        for (int v : tb) cws.candidates.push_back({b, v, a, p[0]});
+        for (int v : ta) gathered.push_back({a, v, b, p[1]});
+        for (int v : tb) gathered.push_back({b, v, a, p[0]});
       }
     }
   }
-  std::sort(cws.candidates.begin(), cws.candidates.end());
+  // Sorted by (body, node, other, triangle), duplicates removed. A node lies in about six
+  // triangles, each paired with the same triangles of the other body, so the list holds each
+  // candidate several times; one sort of all of it was 40% of the see-saw's step. The same order
+  // by a counting sort on the node (body-major) and a sort of each node's few entries.
+  std::vector<int>& start = cws.node_start;
+  std::fill(start.begin(), start.end(), 0);
+  for (const auto& c : gathered) ++start[cws.node_base[c.body] + c.node + 1];
+  for (std::size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
+  cws.candidates.resize(gathered.size());
+  for (const auto& c : gathered) cws.candidates[start[cws.node_base[c.body] + c.node]++] = c;
+  // start[i] is now the end of node i's run, the beginning of node i + 1's.
+  auto first = cws.candidates.begin();
+  for (std::size_t i = 0; i + 1 < start.size(); ++i) {
+    const auto last = cws.candidates.begin() + start[i];
+    if (last - first > 1) std::sort(first, last);
+    first = last;
+  }
   cws.candidates.erase(std::unique(cws.candidates.begin(), cws.candidates.end()),
                        cws.candidates.end());
 }

@@ -101,6 +101,10 @@ struct BodyCollisionWorkspace {
   };
   std::vector<std::array<int, 2>> pairs;
   std::vector<Candidate> candidates;
+  // The candidates as gathered, and per node of all bodies (body-major) where its run starts in
+  // `candidates`: a counting sort by node, then small sorts within a node (gather_candidates).
+  std::vector<Candidate> gathered;
+  std::vector<int> node_start, node_base;
   std::vector<BodyContact> contacts;
   SelfCollisionWorkspace self;  // and x_start, written by record_step_start
 };
