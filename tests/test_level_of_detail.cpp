@@ -75,6 +75,28 @@ TEST(LevelOfDetail, JelloBallFallsDormantWakesBeforeTheSlopeAndKeepsTheLocalPath
   EXPECT_LT(worst, 1e-9);
 }
 
+// The same under the implicit integrator: a dormant body skips the implicit solve, and the path is
+// still the local ball's.
+TEST(LevelOfDetail, UnderTheImplicitIntegratorTheAutoBallKeepsTheLocalPath) {
+  Scene local = load_scene(std::string(PBM_SOURCE_DIR) + "/scenes/jello-ball.json");
+  local.solver.integrator = IntegratorKind::implicit;
+  Scene automatic = local;
+  automatic.bodies[0].level = DeformLevel::automatic;
+  const LevelRun a = run(local, 2.0), b = run(automatic, 2.0);
+  const Model model = build_model(local);
+  ASSERT_EQ(a.frames.size(), b.frames.size());
+  Real worst = 0;
+  int dormant_frames = 0;
+  for (std::size_t f = 0; f < b.frames.size(); ++f) {
+    worst = std::max(worst, (centre(a, f, model, 0) - centre(b, f, model, 0)).norm());
+    dormant_frames += b.frames[f].levels.dormant_bodies;
+  }
+  std::printf("jello-ball auto, implicit: dormant %d frames, centre path off by at most %.3g m\n",
+              dormant_frames, worst);
+  EXPECT_GT(dormant_frames, 10);
+  EXPECT_LT(worst, 1e-9);
+}
+
 // A finer ball (32 rings, 10 kg spread by area) whose membrane limits an explicit step to a
 // fraction of the frame: dormant, it takes the frame's step (its global block's limit is far
 // longer), so its fall costs fewer substeps; awake, it takes the same as the local ball. Its

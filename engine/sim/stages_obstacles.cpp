@@ -34,9 +34,12 @@ void resolve_obstacle_penetrations(const SubstepContext& c, std::span<const char
   for (std::size_t b = 0; b < c.model.bodies.size(); ++b) {
     if (!only.empty() && !only[b]) continue;
     const BodyModel& body = c.model.bodies[b];
-    resolve_penetrations(c.ws.drive.obstacles, body, body_q(body, c.state.q),
-                         body_v(body, c.state.v), c.ws.bodies[b],
-                         c.model.solver.integrator == IntegratorKind::implicit);
+    // A dormant "auto" body has no implicit factor this substep (sim/level_of_detail.h): one a
+    // collision reaches anyway is projected as the explicit integrators do.
+    resolve_penetrations(
+        c.ws.drive.obstacles, body, body_q(body, c.state.q), body_v(body, c.state.v),
+        c.ws.bodies[b],
+        c.model.solver.integrator == IntegratorKind::implicit && !c.ws.bodies[b].dormant);
   }
 }
 
