@@ -88,6 +88,17 @@ void gather_increments(const ConstrainedSystem& system, const VecX& f, Constrain
   }
 }
 
+// pw.rhs = C-dot - C-dot_before, zero for constraints between first-order bodies (their
+// velocities are not state, so the velocity level leaves them).
+void velocity_gap(const ConstrainedSystem& system, ConstraintProjectionWorkspace& pw) {
+  pw.rhs = pw.C_dot - pw.C_dot_before;
+  const std::vector<PointConstraintModel>& points = system.constraints.points;
+  for (std::size_t l = 0; l < points.size(); ++l) {
+    const int a = points[l].ends[0].body;
+    if (system.bodies[a].order == DynamicsOrder::first) pw.rhs.segment<3>(3 * l).setZero();
+  }
+}
+
 // Every constrained body's kinematics and mass block at q (the block is reused where the
 // collision stage already factored this q), L^T of every end, M^-1 L^T, and N factored.
 void factor_projection(const ConstrainedSystem& system, const VecX& q, const VecX& v,
@@ -197,11 +208,7 @@ ConstraintProjection project_constraints_after_collisions(
 
   // Velocity level, second-order bodies only (a first-order body's velocity is not state).
   for (int step = 0; step < kVelocitySteps; ++step) {
-    pw.rhs = pw.C_dot - pw.C_dot_before;
-    for (std::size_t l = 0; l < points.size(); ++l) {
-      const int a = points[l].ends[0].body;
-      if (system.bodies[a].order == DynamicsOrder::first) pw.rhs.segment<3>(3 * l).setZero();
-    }
+    velocity_gap(system, pw);
     if (largest_block(pw.rhs) <= kVelocityTolerance) break;
     solve_constraint_matrix_negated(cw, pw.rhs, pw.lambda);
     gather_increments(system, pw.lambda, cw, pw);
@@ -219,11 +226,7 @@ ConstraintProjection project_constraints_after_collisions(
     update_frames(system, q, v, bodies, pw);
     evaluate_constraints(system, q, v, bodies, pw, pw.C, pw.C_dot);
   }
-  pw.rhs = pw.C_dot - pw.C_dot_before;
-  for (std::size_t l = 0; l < points.size(); ++l) {
-    const int a = points[l].ends[0].body;
-    if (system.bodies[a].order == DynamicsOrder::first) pw.rhs.segment<3>(3 * l).setZero();
-  }
+  velocity_gap(system, pw);
   result.residual_rate = largest_block(pw.rhs);
   return result;
 }

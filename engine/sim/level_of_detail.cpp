@@ -91,8 +91,7 @@ bool choose_levels(const Model& model, State& state, Workspace& ws, LevelStats& 
       const auto d_dot = displacement_rate_of(body.layout, body_v(body, state.v));
       const Real dent = largest_node_norm(q_d), dent_rate = largest_node_norm(d_dot);
       const Reach& r = reach[b];
-      bool wake = dent_rate > 0 && state.dormant[b];  // dented while dormant
-      wake = wake || (dent > 0 && state.dormant[b]);
+      bool wake = state.dormant[b] && (dent > 0 || dent_rate > 0);  // dented while dormant
       wake = wake || pulled(model, b, state.time, state.time + lookahead);
       if (!wake && !ws.drive.obstacles.empty()) {
         const Real clearance = min_obstacle_distance(ws.drive.obstacles, ws.bodies[b]);
