@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "collide/implicit_contact.h"
 #include "collide/obstacle.h"
 #include "core/quaternion.h"
 #include "deform/implicit_membrane.h"
@@ -151,10 +152,10 @@ Vec3 blended_point(const ContactSample& sample, const BodyWorkspace& ws) {
 // Signed distance of the sample's point on the global surface c + R s(u, v) (no dent) to the
 // deepest obstacle; s is evaluated exactly only near an obstacle. Sets s (body frame), o and n.
 Real sample_distance(Obstacles obstacles, const BodyModel& body, const ContactSample& sample,
-                     BodyWorkspace& ws, const Vec3& c, Vec3& s, int& o, Vec3& n) {
+                     BodyWorkspace& ws, const Vec3& c, Real band, Vec3& s, int& o, Vec3& n) {
   s = blended_point(sample, ws);
   const Real screen = deepest(obstacles, c + ws.R * s, o, n);
-  if (screen > 4.0 * body.contact_sample_gap * ws.q_s[0] / body.q_s_fixed[0]) return screen;
+  if (screen > band + 4.0 * body.contact_sample_gap * ws.q_s[0] / body.q_s_fixed[0]) return screen;
   if (body.shape == ShapeKind::superquadric) {
     // The superquadric from its latitude's and longitude's powers, shared by many samples.
     const auto [iu, iv] = sample.grid;
@@ -179,11 +180,12 @@ Vec3 frame_origin(const BodyWorkspace& ws) {
   return ws.x[0] - ws.R * ws.p[0];
 }
 
-// Fills ws.pressing with the samples whose point on the global surface is inside an obstacle.
+// Fills ws.pressing with the samples whose point on the global surface is inside an obstacle, or
+// within `band` of one (the implicit contact's candidates, collide/implicit_contact.h).
 // A signed distance is 1-Lipschitz, so a sample is at least its nearest node's distance minus its
 // triangle's reach: triangles whose nodes all stand farther are skipped unevaluated.
 void gather_pressing_samples(Obstacles obstacles, const BodyModel& body, BodyWorkspace& ws,
-                             const Vec3& c) {
+                             const Vec3& c, Real band = 0) {
   ws.pressing.clear();
   if (!body.has_local || obstacles.empty()) return;
   if (++ws.sample_stamp == 0) {  // wrapped: no entry may look current
@@ -207,21 +209,22 @@ void gather_pressing_samples(Obstacles obstacles, const BodyModel& body, BodyWor
     const std::array<int, 3>& tri = triangles[t];
     const Real phi0 = ws.surface_distance[tri[0]], phi1 = ws.surface_distance[tri[1]],
                phi2 = ws.surface_distance[tri[2]];
-    if (std::min({phi0, phi1, phi2}) > scale * body.contact_triangle_reach[t]) continue;
+    if (std::min({phi0, phi1, phi2}) > band + scale * body.contact_triangle_reach[t]) continue;
     for (int k = 0; k < kContactSamplesPerTriangle; ++k) {
       const int index = static_cast<int>(kContactSamplesPerTriangle * t) + k;
       const ContactSample& sample = body.contact_samples[index];
       // Among planes the deepest distance is a minimum of affine functions, concave: at the blend
       // of the nodes it is at least the blend of theirs, and the exact point is within the gap.
       if (all_planes &&
-          sample.weights[0] * phi0 + sample.weights[1] * phi1 + sample.weights[2] * phi2 > gap) {
+          sample.weights[0] * phi0 + sample.weights[1] * phi1 + sample.weights[2] * phi2 >
+              band + gap) {
         continue;
       }
       BodyWorkspace::PressingPoint point;
       point.sample = index;
-      point.phi = sample_distance(obstacles, body, body.contact_samples[index], ws, c, point.s,
-                                  point.obstacle, point.n);
-      if (point.phi < 0) ws.pressing.push_back(point);
+      point.phi = sample_distance(obstacles, body, body.contact_samples[index], ws, c, band,
+                                  point.s, point.obstacle, point.n);
+      if (point.phi < band) ws.pressing.push_back(point);
     }
   }
 }
@@ -246,6 +249,21 @@ void reserve_columns(MatX& matrix, VecX& vector, VecX& other, int k, int m) {
   other.resize(2 * m);
 }
 
+// How far a point of the global surface may travel toward an obstacle in one step: dt times the
+// fastest node's speed relative to any obstacle after the step's external push (f_i / m_i over
+// dt), doubled for the global surface's own motion (a node's speed holds its dent's rate, the
+// global point's does not).
+Real approach_band(Obstacles obstacles, const BodyModel& body, const BodyWorkspace& ws) {
+  Real speed = 0;
+  for (std::size_t i = 0; i < ws.x.size(); ++i) {
+    const Real pushed = ws.dt * ws.force[i].norm() / body.node_mass[i];
+    for (const ObstacleModel& o : obstacles) {
+      speed = std::max(speed, (ws.x_dot[i] - o.velocity_at(ws.x[i])).norm() + pushed);
+    }
+  }
+  return 2.0 * ws.dt * speed;
+}
+
 }  // namespace
 
 int add_contact_forces(Obstacles obstacles, const BodyModel& body, BodyWorkspace& ws) {
@@ -262,7 +280,11 @@ int add_contact_forces(Obstacles obstacles, const BodyModel& body, BodyWorkspace
   }
   const Vec3 c = frame_origin(ws);
   const Mat3 Rt = ws.R.transpose();
-  gather_pressing_samples(obstacles, body, ws, c);
+  ImplicitContactWorkspace& ic = ws.implicit_contact;
+  ic.candidates = 0;
+  const bool implicit = ic.on && ws.dt > 0;
+  gather_pressing_samples(obstacles, body, ws, c,
+                          implicit ? approach_band(obstacles, body, ws) : 0.0);
   Real pressing_stiffness = 0;
   for (const auto& point : ws.pressing) {
     pressing_stiffness += body.contact_samples[point.sample].stiffness;
@@ -306,8 +328,10 @@ int add_contact_forces(Obstacles obstacles, const BodyModel& body, BodyWorkspace
     // with a material's contact stiffness (per area, mesh-independent) it is a damping ratio of
     // the spring, c = 2 zeta sqrt(k m) with zeta = 1/4, the same where the spring is clamped, so
     // that halving the step approaches one answer (docs/architecture.md, "Knobs that converge").
+    // Under the implicit integrator the spring and the dashpot act at the step's end
+    // (collide/implicit_contact.h) and need no clamp.
     Real damping = kContactDamping * mass_n * rate;
-    if (rate > 0 && stiffness > mass_n * rate * rate) {
+    if (!implicit && rate > 0 && stiffness > mass_n * rate * rate) {
       stiffness = mass_n * rate * rate;
     } else if (body.contact_from_material) {
       damping = kContactDamping * std::sqrt(stiffness * mass_n);
@@ -319,11 +343,26 @@ int add_contact_forces(Obstacles obstacles, const BodyModel& body, BodyWorkspace
       s_dot += sample.weights[c_k] * (ws.p_dot[i] - ws.d_dot(body, i));
     }
     // Relative to the obstacle's material at the point (5.11 and 5.12 against a moving one).
-    const Vec3 v_point =
-        ws.R * (V + ws.omega.cross(point.s) + s_dot) - obs.velocity_at(c + ws.R * point.s);
-    f_normal -= damping * v_point.dot(point.n);  // it never pulls: the total is >= 0
+    const Vec3 v_obstacle = obs.velocity_at(c + ws.R * point.s);
+    const Vec3 v_point = ws.R * (V + ws.omega.cross(point.s) + s_dot) - v_obstacle;
+    const Real u = v_point.dot(point.n);
+    f_normal -= damping * u;  // it never pulls: the total is >= 0
     f_normal = std::max(0.0, f_normal);
     magnitude[p] = f_normal;
+    if (implicit) {
+      // The normal push is the implicit solve's (e_p, beta_p of collide/implicit_contact.h);
+      // f_normal above only bounds the friction of the points inside.
+      const Real h = ws.dt, spring = damping + h * stiffness;
+      if (body.order == DynamicsOrder::second) {
+        ic.excess[p] = -stiffness * point.phi - spring * u;
+        ic.weight[p] = h * spring;
+      } else {
+        ic.excess[p] = -stiffness * point.phi + spring * v_obstacle.dot(point.n);
+        ic.weight[p] = spring;
+      }
+      magnitude[p] = 0;
+      if (point.phi >= 0) continue;  // a candidate not yet inside has no friction
+    }
     const Vec3 v_p = v_point - v_point.dot(point.n) * point.n;
     const Real speed = v_p.norm();
     if (speed > 0 && obs.friction > 0 && f_normal > 0) {
@@ -338,6 +377,10 @@ int add_contact_forces(Obstacles obstacles, const BodyModel& body, BodyWorkspace
     }
   }
   ws.contact_generalized.noalias() += G * magnitude;
+  if (implicit) {
+    ic.G.leftCols(m) = G;  // the friction below reuses G's scratch
+    ic.candidates = m;
+  }
   // (5.12) on each point's slip (a rolling ball's contact points do not slip), capped at the
   // force that stops the slip within one step: beyond it the explicit Coulomb law would reverse
   // the slip (rate * dt >> 1 at 0.031 s). The cap uses the mass the point moves with along its

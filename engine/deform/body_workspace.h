@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <Eigen/SparseCholesky>
 
@@ -61,6 +62,21 @@ struct ImplicitMembraneWorkspace {
   VecX lambda, rhs_m;                        // capacity
   VecX change;                               // 3 n: the local change
   VecX dnu;                                  // k: the generalized change
+};
+
+// The implicit integrator's contact (collide/implicit_contact.h), sized only under "implicit": per
+// candidate point of the global surface, its direction g_p in the rigid + global rows, e_p and
+// beta_p of its end force f_p = e_p - beta_p g_p^T x, and whether it is in the active set.
+struct ImplicitContactWorkspace {
+  bool on = false;
+  int candidates = 0;              // points of this evaluation
+  int rounds = 0;                  // active-set rounds of the last solve
+  MatX G;                          // k x samples
+  VecX excess, weight, end_force;  // e_p, beta_p, f_p
+  std::vector<char> active;
+  MatX system, scratch;  // k x k; k x samples
+  Eigen::LDLT<MatX> factor;
+  VecX rhs, fallback;  // k
 };
 
 // Per-body scratch, sized once (no allocation inside a step). Rebuildable at any time.
@@ -136,7 +152,8 @@ struct BodyWorkspace {
   // A body of level "auto" with its displacements off this frame: a copy of State::dormant,
   // set at each frame's start (sim/level_of_detail.h). Its q_d and d-dot are zero and stay so.
   bool dormant = false;
-  ImplicitMembraneWorkspace implicit;  // empty unless the integrator is "implicit"
+  ImplicitMembraneWorkspace implicit;         // empty unless the integrator is "implicit"
+  ImplicitContactWorkspace implicit_contact;  // the same
   const Vec3& d_dot(const BodyModel&, int i) const { return d_dot_body[i]; }
 };
 

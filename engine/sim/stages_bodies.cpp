@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "collide/implicit_contact.h"
 #include "deform/body_dynamics.h"
 #include "deform/implicit_membrane.h"
 #include "deform/nodal_loads.h"
@@ -28,6 +29,7 @@ void size_bodies(const Model& model, Workspace& ws) {
     // Only a scene that asks for the implicit integrator pays for K_dd's factor.
     if (model.solver.integrator == IntegratorKind::implicit) {
       prepare_implicit_membrane(model.bodies[b], ws.bodies[b]);
+      prepare_implicit_contact(model.bodies[b], ws.bodies[b]);
     }
   }
   ws.first_order_velocity.setZero(model.n_v);
@@ -59,8 +61,9 @@ void body_dynamics(const RateContext& c) {
     auto out = body_v(body, c.v_dot);
     BodyWorkspace& bw = c.ws.bodies[b];
     solve_body_dynamics(body, body_q(body, c.q), body_v(body, c.v), bw, out);
-    if (c.model.solver.integrator == IntegratorKind::implicit && !bw.dormant) {
-      implicit_membrane_rates(body, body_v(body, c.v), bw, bw.dt, out);
+    if (c.model.solver.integrator == IntegratorKind::implicit) {
+      if (!bw.dormant) implicit_membrane_rates(body, body_v(body, c.v), bw, bw.dt, out);
+      implicit_contact_rates(body, bw, out);
     }
   }
 }
