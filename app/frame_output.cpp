@@ -49,6 +49,7 @@ std::string frame_stats_json(const World& world, const FrameStats& s, long frame
   j["wall_seconds"] = s.wall_seconds;
   j["substeps"] = s.substeps;
   j["retries"] = s.retries;
+  j["rejected_steps"] = s.rejected;
   j["evaluations"] = s.evaluations;
   j["kinetic_energy"] = s.kinetic;
   j["elastic_energy"] = s.elastic;

@@ -16,6 +16,7 @@
 #include "progress_bar.h"
 #include "scene/scene_enum_names.h"
 #include "scene/scene_json.h"
+#include "sim/adaptive_step.h"
 #include "sim/simulation.h"
 
 namespace pbm {
@@ -151,7 +152,7 @@ int run_simulate(const SimulateOptions& o) {
   };
   int code = 0;
   // What the "auto" bodies saved (sim/level_of_detail.h), said at the end.
-  long dormant_body_frames = 0, body_frames = 0, level_switches = 0, substeps = 0;
+  long dormant_body_frames = 0, body_frames = 0, level_switches = 0, substeps = 0, rejected = 0;
   Real level_energy_jump = 0, level_position_jump = 0;
   ProgressBar bar("simulate", n_frames);
   try {
@@ -170,6 +171,7 @@ int run_simulate(const SimulateOptions& o) {
       level_energy_jump = std::max(level_energy_jump, levels.energy_jump);
       level_position_jump = std::max(level_position_jump, levels.position_jump);
       substeps += sim->stats.substeps;
+      rejected += sim->stats.rejected;
       for (const BodyModel& body : model.bodies) body_frames += body.auto_level ? 1 : 0;
       bar.update(f, "t=" + std::to_string(state.time).substr(0, 6) + "s");
     }
@@ -184,6 +186,11 @@ int run_simulate(const SimulateOptions& o) {
         "switch off {:.3g} m, {:.3g} J), {} substeps",
         o.scene, dormant_body_frames, body_frames, level_switches, level_position_jump,
         level_energy_jump, substeps);
+  }
+  if (adaptive_steps(model)) {
+    // What the adaptive step did (sim/adaptive_step.h): its accepted and rejected substeps.
+    spdlog::info("{}: adaptive implicit step: {} substeps, {} rejected (adaptive_tolerance {:g} m)",
+                 o.scene, substeps, rejected, model.solver.adaptive_tolerance);
   }
   if (stats) stats << (first_stats ? "{\"frames\":[" : "") << "\n]}\n";
   return code;

@@ -1,7 +1,8 @@
 // Determinism by construction (docs/architecture.md, "Determinism"): what changes a later frame
 // lives in State (rk45's step size, the contact-step flag), so a re-simulation after a seek, a
 // fresh workspace and a workspace that saw another history all give the same bits, with the
-// adaptive integrator and with contact step reduction on.
+// adaptive integrators (rk45, the implicit one's adaptive step) and with contact step reduction
+// on.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -16,7 +17,7 @@
 namespace pbm {
 namespace {
 
-enum class Variant { rk45, contact_step_reduction };
+enum class Variant { rk45, contact_step_reduction, adaptive_implicit };
 
 // The jello-ball (coarse, 8 x 8) dropping onto its slope: contacts from about frame 10 on.
 Scene scene_for(Variant variant) {
@@ -25,6 +26,11 @@ Scene scene_for(Variant variant) {
   if (variant == Variant::rk45) {
     scene.solver.integrator = IntegratorKind::rk45;
     scene.solver.tolerance = 1e-5;
+  } else if (variant == Variant::adaptive_implicit) {
+    // sim/adaptive_step.h: the level and the calm count in State choose the next substep.
+    scene.solver.integrator = IntegratorKind::implicit;
+    scene.solver.adaptive = true;
+    scene.solver.adaptive_tolerance = 1e-3;
   } else {
     scene.solver.contact_step_reduction = true;
     scene.solver.contact_dt_factor = 0.25;
@@ -34,6 +40,17 @@ Scene scene_for(Variant variant) {
 
 void run_frames(Simulation& sim, int frames) {
   for (int f = 0; f < frames; ++f) ASSERT_TRUE(advance_frame(sim).ok) << sim.state.time;
+}
+
+const char* name_of(Variant v) {
+  switch (v) {
+    case Variant::rk45:
+      return "rk45";
+    case Variant::contact_step_reduction:
+      return "contact step reduction";
+    default:
+      return "adaptive implicit";
+  }
 }
 
 class Determinism : public testing::TestWithParam<Variant> {};
@@ -55,6 +72,8 @@ TEST_P(Determinism, FreshAndReusedWorkspacesGiveTheSameBits) {
   // What the variant carries in State is in play: rk45 remembers a step, contacts split steps.
   if (GetParam() == Variant::rk45) {
     EXPECT_GT(straight.state.rk45_step, 0.0);
+  } else if (GetParam() == Variant::adaptive_implicit) {
+    EXPECT_GT(straight.state.adaptive_level + straight.state.adaptive_calm, 0);
   } else {
     EXPECT_GE(touched, 3);  // it bounces on the slope: 4 of these frames touch
   }
@@ -76,10 +95,11 @@ TEST_P(Determinism, FreshAndReusedWorkspacesGiveTheSameBits) {
   init_workspace(rebuilt.world, rebuilt.ws);
   run_frames(rebuilt, 20);
   EXPECT_EQ(hash_state(rebuilt.state), hash_state(straight.state));
-  std::printf("%s: state hash %016llx at frame 40, rk45 step %.3g s, %d frames with contacts\n",
-              GetParam() == Variant::rk45 ? "rk45" : "contact step reduction",
-              static_cast<unsigned long long>(hash_state(straight.state)), straight.state.rk45_step,
-              touched);
+  std::printf(
+      "%s: state hash %016llx at frame 40, rk45 step %.3g s, adaptive level %d, %d frames with "
+      "contacts\n",
+      name_of(GetParam()), static_cast<unsigned long long>(hash_state(straight.state)),
+      straight.state.rk45_step, straight.state.adaptive_level, touched);
 }
 
 // The runner with a cache too small to keep frames (only frame 0 and the newest): every seek
@@ -109,10 +129,17 @@ TEST_P(Determinism, SeekAndResimulateInTheRunnerGivesTheSameBits) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Variants, Determinism,
-                         testing::Values(Variant::rk45, Variant::contact_step_reduction),
+                         testing::Values(Variant::rk45, Variant::contact_step_reduction,
+                                         Variant::adaptive_implicit),
                          [](const testing::TestParamInfo<Variant>& param) {
-                           return std::string(
-                               param.param == Variant::rk45 ? "Rk45" : "ContactStepReduction");
+                           switch (param.param) {
+                             case Variant::rk45:
+                               return std::string("Rk45");
+                             case Variant::contact_step_reduction:
+                               return std::string("ContactStepReduction");
+                             default:
+                               return std::string("AdaptiveImplicit");
+                           }
                          });
 
 }  // namespace

@@ -146,6 +146,14 @@ TEST(SceneJsonErrors, SolverRangesNameTheField) {
   json solver = {{"bodies", {{{"material", {{"mass", 1}}}}}},
                  {"solver", {{"constraint_solver", "cholesky"}}}};
   expect_error(solver, "solver.constraint_solver", "must be one of \"dense\", \"sparse\"");
+  // The adaptive step is the implicit integrator's (sim/adaptive_step.h); its tolerance > 0.
+  json adaptive = {{"bodies", {{{"material", {{"mass", 1}}}}}},
+                   {"solver", {{"integrator", "rk4"}, {"adaptive", true}}}};
+  expect_error(adaptive, "solver", "adaptive: only the implicit integrator");
+  adaptive["solver"]["integrator"] = "implicit";
+  EXPECT_TRUE(parse_scene(adaptive.dump(), kFile).solver.adaptive);
+  adaptive["solver"]["adaptive_tolerance"] = 0;
+  expect_error(adaptive, "solver.adaptive_tolerance", "must be > 0");
 }
 
 TEST(SceneJsonErrors, DuplicateKeyNamesItsPath) {

@@ -30,6 +30,10 @@ struct SolverDef {
   Real dt = 0.001;  // substep [s], > 0
   IntegratorKind integrator = IntegratorKind::euler;
   Real tolerance = 1e-6;  // rk45 local error tolerance, > 0
+  // The implicit integrator's adaptive step (sim/adaptive_step.h): each substep's length chosen
+  // from a local error estimate, kept under adaptive_tolerance [m], between dt and dt / 2^10.
+  bool adaptive = false;
+  Real adaptive_tolerance = 1e-3;  // [m], > 0
   // Time scale tau of the shape parameters' inertia floor eta_i = k_s,i tau^2 [s], > 0 (absent:
   // dt). Part of the model, not of the step: fixed, it leaves dt a knob that converges.
   std::optional<Real> shape_inertia_time;

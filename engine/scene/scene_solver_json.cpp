@@ -15,6 +15,15 @@ constexpr auto kSolverFields = std::to_array<Field<SolverDef>>({
         {.key = "integrator", .description = "Time integrator."}),
     value<&SolverDef::tolerance>(
         {.key = "tolerance", .range = kPositive, .description = "rk45 local error tolerance."}),
+    value<&SolverDef::adaptive>(
+        {.key = "adaptive",
+         .description = "implicit: choose each substep's length (dt down to dt / 1024) from a "
+                        "local error estimate; rejected steps are counted."}),
+    value<&SolverDef::adaptive_tolerance>(
+        {.key = "adaptive_tolerance",
+         .unit = "m",
+         .range = kPositive,
+         .description = "Largest local position error of an adaptive implicit substep."}),
     value<&SolverDef::shape_inertia_time>(
         {.key = "shape_inertia_time",
          .unit = "s",
@@ -92,8 +101,20 @@ constexpr auto kSolverFields = std::to_array<Field<SolverDef>>({
 
 }  // namespace
 
+namespace {
+
+void check_solver(const JsonNode& node, SolverDef& solver, const ReadContext&) {
+  // rk45 adapts its step already; Euler and RK4 have no error estimate here.
+  if (solver.adaptive && solver.integrator != IntegratorKind::implicit) {
+    fail(node, "adaptive: only the implicit integrator takes an adaptive step (integrator is '" +
+                   std::string(name_of(kIntegratorKindNames, solver.integrator)) + "')");
+  }
+}
+
+}  // namespace
+
 constexpr Section<SolverDef> kSolverSection{
-    .name = "solver", .noun = "solver", .fields = kSolverFields};
+    .name = "solver", .noun = "solver", .fields = kSolverFields, .check = check_solver};
 
 namespace {
 

@@ -29,11 +29,12 @@ struct LevelStats {
 };
 
 struct FrameStats {
-  Real time = 0;                                 // of the state measured [s]
-  double wall_seconds = 0;                       // the whole frame, guard and retries included
-  int substeps = 0;                              // of the accepted attempt
-  int retries = 0;                               // halvings of the substep the guard needed
-  int evaluations = 0;                           // rate evaluations of the accepted attempt
+  Real time = 0;            // of the state measured [s]
+  double wall_seconds = 0;  // the whole frame, guard and retries included
+  int substeps = 0;         // of the accepted attempt
+  int rejected = 0;     // adaptive implicit substeps rejected by the error estimate (all attempts)
+  int retries = 0;      // halvings of the substep the guard needed
+  int evaluations = 0;  // rate evaluations of the accepted attempt
   Real kinetic = 0, elastic = 0, potential = 0;  // totals [J]
   // The run-level guard after the frame: the energy gained beyond the inputs' work and the most
   // it may be (State::energy_surplus, solver.energy_tolerance x scale) [J].

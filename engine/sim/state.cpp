@@ -40,6 +40,8 @@ std::uint64_t hash_state(const State& state) {
   mix(state.q.data(), sizeof(Real) * state.q.size());
   mix(state.v.data(), sizeof(Real) * state.v.size());
   mix(&state.rk45_step, sizeof state.rk45_step);
+  mix(&state.adaptive_level, sizeof state.adaptive_level);
+  mix(&state.adaptive_calm, sizeof state.adaptive_calm);
   mix(&state.contact_nodes, sizeof state.contact_nodes);
   mix(&state.energy_surplus, sizeof state.energy_surplus);
   mix(&state.energy_scale, sizeof state.energy_scale);

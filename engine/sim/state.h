@@ -19,6 +19,10 @@ struct State {
   // rk45's step size to try first in the next substep [s] (0: the whole substep): the adaptive
   // integrator's memory of the last accepted step.
   Real rk45_step = 0;
+  // The adaptive implicit step (sim/adaptive_step.h): the level of the next substep to try (its
+  // length is the frame's substep / 2^level) and how many calm steps in a row it has taken.
+  int adaptive_level = 0;
+  int adaptive_calm = 0;
   // Nodes touching an obstacle or another body after the last substep: with
   // solver.contact_step_reduction it decides whether the next substep is divided (end of 5.2.2).
   int contact_nodes = 0;

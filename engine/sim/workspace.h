@@ -52,6 +52,7 @@ struct Workspace {
   StageClock clock;
   // advance_frame's own: the frame's start (its retry point) and the guard's measurements.
   State frame_start;
+  State adaptive_save;  // the state before an adaptive substep, restored when it is rejected
   FrameStats before, after;
   // The frame's start state measured with the drive of its end, and its end state with the drive
   // of its start: the run-level guard's trapezoid for the work a time-dependent drive does

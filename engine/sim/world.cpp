@@ -6,6 +6,7 @@
 
 #include "core/bits.h"
 #include "core/wall_clock.h"
+#include "sim/adaptive_step.h"
 #include "sim/level_of_detail.h"
 
 namespace pbm {
@@ -263,6 +264,8 @@ FrameResult advance_frame(const World& world, const Inputs& inputs, State& state
     measure_state(world, inputs, state, ws, ws.start_at_end_drive);
     state.time = ws.frame_start.time;
   }
+  const bool adaptive = adaptive_steps(model);
+  int rejected = 0;  // over every attempt: the work the estimate threw away
   for (int attempt = 0; attempt <= model.solver.max_retries; ++attempt) {
     const int substeps = base_substeps << attempt;
     const Real h = frame_dt / substeps;
@@ -272,7 +275,14 @@ FrameResult advance_frame(const World& world, const Inputs& inputs, State& state
     for (int k = 0; k < substeps && ok; ++k) {
       // End of sec. 5.2.2: smaller steps while in contact, back to h after.
       const bool last_substep = k + 1 == substeps;
-      if (model.solver.contact_step_reduction && state.contact_nodes > 0) {
+      if (adaptive) {
+        // The error estimate chooses the lengths within h (sim/adaptive_step.h).
+        const AdaptiveResult a =
+            advance_adaptive(world, inputs, state, h, last_substep, ws, evaluations);
+        ok = a.ok;
+        done += a.accepted;
+        rejected += a.rejected;
+      } else if (model.solver.contact_step_reduction && state.contact_nodes > 0) {
         const int m = static_cast<int>(std::ceil(1.0 / model.solver.contact_dt_factor - 1e-9));
         for (int j = 0; j < m && ok; ++j) {
           ws.substep_ends_frame = last_substep && j + 1 == m;
@@ -348,6 +358,7 @@ FrameResult advance_frame(const World& world, const Inputs& inputs, State& state
       ws.last_measured.stats = after;
       stats = after;
       stats.substeps = done;
+      stats.rejected = rejected;
       stats.retries = attempt;
       stats.evaluations = evaluations;
       stats.contacts = state.contact_nodes;
