@@ -302,7 +302,8 @@ Scene dropped_ball(IntegratorKind integrator, Real dt, Real frame) {
 struct Landing {
   Real largest_total = 0;  // kinetic + elastic + potential over every frame after the first [J]
   Real min_distance = 1e300;
-  int retries = 0;
+  int retries = 0, substeps = 0, rejected = 0;
+  std::vector<Real> z;  // the centre's height at every frame
   FrameStats end;
 };
 
@@ -318,6 +319,9 @@ Landing drop(const Scene& scene, Real seconds) {
         std::max(l.largest_total, sim.stats.kinetic + sim.stats.elastic + sim.stats.potential);
     l.min_distance = std::min(l.min_distance, sim.stats.min_distance);
     l.retries += sim.stats.retries;
+    l.substeps += sim.stats.substeps;
+    l.rejected += sim.stats.rejected;
+    l.z.push_back(sim.stats.bodies[0].position.z());
   }
   l.end = sim.stats;
   return l;
@@ -368,25 +372,11 @@ TEST(ImplicitContact, ABallDroppedAtTenAndTwentyTimesTheLimitLandsAndRestsAsEule
 namespace pbm {
 namespace {
 
-struct PathRun {
-  std::vector<Real> z;  // the centre's height at every frame
-  int substeps = 0, rejected = 0;
-};
+using PathRun = Landing;
 
 PathRun centre_path(Scene scene, Real seconds) {
   scene.solver.shape_inertia_time = 0.01;  // one model for every step (deform/body_model.h)
-  Simulation sim(scene);
-  PathRun run;
-  const int frames = static_cast<int>(std::lround(seconds * scene.solver.fps));
-  for (int f = 0; f < frames; ++f) {
-    const FrameResult r = advance_frame(sim);
-    EXPECT_TRUE(r.ok) << r.message;
-    if (!r.ok) break;
-    run.z.push_back(sim.stats.bodies[0].position.z());
-    run.substeps += sim.stats.substeps;
-    run.rejected += sim.stats.rejected;
-  }
-  return run;
+  return drop(scene, seconds);
 }
 
 Real largest_difference(const PathRun& a, const PathRun& b) {
