@@ -56,8 +56,9 @@ void implicit_contact_rates(const BodyModel& body, BodyWorkspace& ws, Eigen::Ref
         W.col(p).setZero();
       }
     }
+    // The rows' damping at the step's end as implicit_row_damping takes it: A (1 + h nu).
     ic.system = ws.A;
-    if (!second) ic.system *= body.damping;
+    ic.system *= second ? 1.0 + ws.dt * body.damping : body.damping;
     ic.system.noalias() += W * G.transpose();
     x = ws.r_g;
     for (int p = 0; p < m; ++p) {
@@ -89,7 +90,7 @@ void implicit_contact_rates(const BodyModel& body, BodyWorkspace& ws, Eigen::Ref
     ic.fallback = ws.r_g;
     for (int p = 0; p < m; ++p) ic.fallback.noalias() += std::max(0.0, e[p]) * G.col(p);
     solve_generalized_mass(ws, ic.fallback, x);
-    if (!second) x /= body.damping;
+    x /= second ? 1.0 + ws.dt * body.damping : body.damping;
   }
   velocity_of(rates) = ws.R * linear_part(x);
   omega_of(rates) = angular_part(x);

@@ -192,6 +192,11 @@ void implicit_membrane_rates(const BodyModel& body, const Eigen::Ref<const VecX>
   }
 }
 
+void implicit_row_damping(const BodyModel& body, Real h, Eigen::Ref<VecX> rates) {
+  if (body.order != DynamicsOrder::second || !(body.damping > 0) || !(h > 0)) return;
+  rates.head(BodyLayout::kShapeInV + body.n_s) /= 1.0 + h * body.damping;
+}
+
 void implicit_node_correction(const BodyModel& body, BodyWorkspace& ws) {
   ImplicitMembraneWorkspace& im = ws.implicit;
   im.change.setZero();

@@ -48,8 +48,12 @@ StabilityLimit explicit_stability_limit(const BodyModel& body, int iterations) {
                                 ? 0.5 * nu + std::sqrt(0.25 * nu * nu + ws2)
                             : nu > 0 ? ws2 / nu
                                      : 0.0;
-  limit.dt_implicit = lambda_shape > 0 ? 2.0 / lambda_shape : inf;
-  limit.dt_euler_global = limit.dt_implicit;
+  limit.dt_euler_global = lambda_shape > 0 ? 2.0 / lambda_shape : inf;
+  // The implicit integrator damps the rows at the step's end (implicit_row_damping), so a
+  // second-order body keeps only the undamped bound omega_shape dt < 2.
+  limit.dt_implicit = body.order == DynamicsOrder::second
+                          ? (limit.omega_shape > 0 ? 2.0 / limit.omega_shape : inf)
+                          : limit.dt_euler_global;
   limit.dt_rk4_global = lambda_shape > 0 ? 2.78 / lambda_shape : inf;
   return limit;
 }

@@ -23,11 +23,12 @@ struct StabilityLimit {
   Real lambda = 0;
   // Largest stable step of the book's Euler and of RK4 [s] (infinite when nothing limits it).
   Real dt_euler = 0, dt_rk4 = 0;
-  // The implicit integrator's: Euler's limit on the global block alone (the membrane is taken
-  // implicitly, deform/implicit_membrane.h).
+  // The implicit integrator's: the global block's undamped bound 2 / omega_shape for a
+  // second-order body (the membrane and the rows' damping are taken implicitly,
+  // deform/implicit_membrane.h), Euler's limit on the global block for a first-order one.
   Real dt_implicit = 0;
   // Euler's and RK4's limits on the global block alone: a body of level "auto" while its
-  // displacements are off (sim/level_of_detail.h). dt_euler_global equals dt_implicit.
+  // displacements are off (sim/level_of_detail.h).
   Real dt_euler_global = 0, dt_rk4_global = 0;
 };
 

@@ -63,6 +63,7 @@ void body_dynamics(const RateContext& c) {
     solve_body_dynamics(body, body_q(body, c.q), body_v(body, c.v), bw, out);
     if (c.model.solver.integrator == IntegratorKind::implicit) {
       if (!bw.dormant) implicit_membrane_rates(body, body_v(body, c.v), bw, bw.dt, out);
+      implicit_row_damping(body, bw.dt, out);
       implicit_contact_rates(body, bw, out);
     }
   }
