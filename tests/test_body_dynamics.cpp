@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "deform/body_dynamics.h"
+#include "deform/shape_parameters.h"
 #include "scene_builders.h"
 #include "sim/simulation.h"
 
@@ -87,6 +88,49 @@ TEST(BodyDynamics, SpinningDeformingFreeBodyConservesMomentaAndEnergy) {
 
 namespace pbm {
 namespace {
+
+// The mass block (3.16) as the superquadric's fixed-size pass and the run-time path assemble it,
+// against sum_i m_i P_i^T P_i built node by node from P_i = [I, -p~_i, J_i] (3.14), plus the
+// parameter inertia floor and the gauge term: for a deformed, spinning superquadric (n_s = 6) and
+// a tapered, bent one (n_s = 11).
+TEST(BodyDynamics, MassBlockIsTheSumOfTheNodesPTransposeP) {
+  for (const ShapeKind shape : {ShapeKind::superquadric, ShapeKind::taper_bend}) {
+    BodyDef b = test::ball(DeformLevel::local, 8);
+    b.shape = shape;
+    b.q_s = default_shape_parameters(shape);
+    b.q_s[1] = 1.3;
+    b.q_s[4] = 0.7;
+    if (shape == ShapeKind::taper_bend) b.q_s[6] = 0.2;
+    b.q_s0 = b.q_s;
+    b.k_s = VecX::Constant(b.q_s.size(), 2000.0);
+    b.angular_velocity = Vec3(0.3, 1.0, 2.0);
+    Simulation sim(test::free_space(b));
+    const BodyModel& body = sim.model.bodies[0];
+    auto q = body_q(body, sim.state.q);
+    auto d = displacement_of(body.layout, q);
+    for (int i = 0; i < d.size(); ++i) d[i] = 0.03 * std::sin(1.3 * i);
+    BodyWorkspace& ws = sim.ws.bodies[0];
+    const auto qc = body_q(body, std::as_const(sim.state.q));
+    const auto vc = body_v(body, std::as_const(sim.state.v));
+    compute_body_kinematics(body, qc, vc, ws);
+    factor_generalized_mass(body, qc, ws);
+    const int k = body.n_generalized(), ns = body.n_s;
+    ASSERT_EQ(ns, shape_parameter_count(shape));
+    MatX expected = MatX::Zero(k, k);
+    for (int i = 0; i < body.n_nodes(); ++i) {
+      MatX P = MatX::Zero(3, k);
+      P.leftCols(3) = Mat3::Identity();
+      P.middleCols(3, 3) = -skew(ws.p[i]);
+      P.rightCols(ns) = ws.Jt.middleCols(3 * i, 3).transpose();
+      expected += body.node_mass[i] * P.transpose() * P;
+    }
+    const VecX n = gauge_direction(ws.q_s);
+    expected.bottomRightCorner(ns, ns).diagonal() += body.parameter_inertia_floor;
+    expected.bottomRightCorner(ns, ns) += body.parameter_inertia * n * n.transpose();
+    EXPECT_LT((ws.A - expected).cwiseAbs().maxCoeff(), 1e-12 * expected.cwiseAbs().maxCoeff())
+        << "shape " << static_cast<int>(shape);
+  }
+}
 
 TEST(BodyDynamics, LumpedMassSumsToTheBodyMass) {
   for (int resolution : {6, 16}) {

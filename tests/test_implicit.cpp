@@ -8,7 +8,7 @@
 //  - The obstacles' push taken at the step's end (collide/implicit_contact.h): a ball dropped at
 //    10x and 20x its Euler limit lands without an energy gain or a retry and rests where Euler
 //    rests.
-//  - The rows' damping at the step's end: a fall under nu = 1000 at 5x the damper's Euler limit
+//  - The rows' damping at the step's end: a fall under nu = 4000 at 20x the damper's Euler limit
 //    follows backward Euler's recurrence to the terminal speed.
 #include <gtest/gtest.h>
 
@@ -284,24 +284,23 @@ TEST(Implicit, StiffJelloRestsOnTheGroundAtTwentyTimesTheExplicitLimit) {
 namespace pbm {
 namespace {
 
-// The extremes matrix's ball (8 x 8, 10 kg, radius 1, nu = 1) dropped 1 m onto the ground.
 // The rows' damping at the step's end (implicit_row_damping): a ball falling under damping
-// nu = 1000 (the interactive scene's), whose explicit Euler step the damper alone caps at
-// 2 / nu = 2 ms, steps at 10 ms and follows backward Euler's c-dot_{n+1} = (c-dot_n + h g) /
+// nu = 4000 (the interactive scene's), whose explicit Euler step the damper alone caps at
+// 2 / nu = 0.5 ms, steps at 10 ms and follows backward Euler's c-dot_{n+1} = (c-dot_n + h g) /
 // (1 + h nu) step by step to the terminal speed g / nu; Euler's limit is kept for Euler.
 TEST(ImplicitDamping, AHeavilyDampedFallFollowsBackwardEulerToTheTerminalSpeed) {
   BodyDef b = test::ball(DeformLevel::local, 8);
-  b.material.damping = 1000;
+  b.material.damping = 4000;
   Scene scene = test::free_space(b);
   scene.gravity = Vec3(0, 0, -9.81);
   scene.solver.dt = 0.01;
   scene.solver.fps = 100;
   scene.solver.integrator = IntegratorKind::euler;
-  EXPECT_LT(build_model(scene).substep, 2.0 / 1000);
+  EXPECT_LT(build_model(scene).substep, 2.0 / 4000);
   scene.solver.integrator = IntegratorKind::implicit;
   Simulation sim(scene);
   ASSERT_EQ(sim.model.substep, 0.01);
-  const Real h = 0.01, nu = 1000, g = -9.81;
+  const Real h = 0.01, nu = 4000, g = -9.81;
   Real expected = 0;
   for (int frame = 1; frame <= 30; ++frame) {
     ASSERT_TRUE(advance_frame(sim).ok) << "frame " << frame;
@@ -313,6 +312,7 @@ TEST(ImplicitDamping, AHeavilyDampedFallFollowsBackwardEulerToTheTerminalSpeed) 
   EXPECT_NEAR(expected, g / nu, 1e-12);
 }
 
+// The extremes matrix's ball (8 x 8, 10 kg, radius 1, nu = 1) dropped 1 m onto the ground.
 Scene dropped_ball(IntegratorKind integrator, Real dt, Real frame) {
   BodyDef b = test::ball(DeformLevel::local, 8);
   b.position = Vec3(0, 0, 2);

@@ -270,17 +270,45 @@ void factor_generalized_mass(const BodyModel& body, const Eigen::Ref<const VecX>
   Real m = 0;
   Vec3 mp = Vec3::Zero();
   Mat3 inertia = Mat3::Zero();
-  for (int i = 0; i < n; ++i) {
-    const Real mi = body.node_mass[i];
-    const Vec3& p = ws.p[i];
-    m += mi;
-    mp += mi * p;
-    inertia += mi * (p.squaredNorm() * Mat3::Identity() - p * p.transpose());
-  }
   MatX& mJ = ws.mass_J;
   MatX& mpJ = ws.mass_pJ;
   MatX& JtJ = ws.mass_JtJ;
-  if (ns > 0) {
+  if (ns == kSuperquadricParameters) {
+    // One pass over the nodes in fixed-size blocks: m J, m p~ J and m J^T J accumulate in
+    // registers, where the run-time path below streams a scaled copy of J^T through three
+    // products.
+    using Block36 = Eigen::Matrix<Real, 3, kSuperquadricParameters>;
+    using Block6 = Eigen::Matrix<Real, kSuperquadricParameters, kSuperquadricParameters>;
+    Block36 sum_mJ = Block36::Zero(), sum_mpJ = Block36::Zero();
+    Block6 sum_JtJ = Block6::Zero();
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Map<const SuperquadricJt> Jt_i(ws.Jt.data() + 3 * i * ns);
+      const Real mi = body.node_mass[i];
+      const Vec3& p = ws.p[i];
+      m += mi;
+      mp += mi * p;
+      inertia += mi * (p.squaredNorm() * Mat3::Identity() - p * p.transpose());
+      const Block36 mJ_i = mi * Jt_i.transpose();
+      sum_mJ += mJ_i;
+      // Row r of p~ (m J) is p_{r+1} (m J)_{r+2} - p_{r+2} (m J)_{r+1}.
+      sum_mpJ.row(0) += p.y() * mJ_i.row(2) - p.z() * mJ_i.row(1);
+      sum_mpJ.row(1) += p.z() * mJ_i.row(0) - p.x() * mJ_i.row(2);
+      sum_mpJ.row(2) += p.x() * mJ_i.row(1) - p.y() * mJ_i.row(0);
+      sum_JtJ.noalias() += Jt_i * mJ_i;
+    }
+    mJ = sum_mJ;
+    mpJ = sum_mpJ;
+    JtJ = sum_JtJ;
+  } else {
+    for (int i = 0; i < n; ++i) {
+      const Real mi = body.node_mass[i];
+      const Vec3& p = ws.p[i];
+      m += mi;
+      mp += mi * p;
+      inertia += mi * (p.squaredNorm() * Mat3::Identity() - p * p.transpose());
+    }
+  }
+  if (ns > 0 && ns != kSuperquadricParameters) {
     using Strided = Eigen::Map<const MatX, 0, Eigen::OuterStride<>>;
     using Coordinates = Eigen::Map<const VecX, 0, Eigen::InnerStride<3>>;
     ws.mass_Jt.noalias() = ws.Jt * ws.node_mass_3.asDiagonal();

@@ -46,7 +46,7 @@ void implicit_membrane_rates(const BodyModel& body, const Eigen::Ref<const VecX>
 // The damping of the rigid and global rows taken at the step's end: a second-order body's
 // -nu m_i x_i-dot (sec. 6.1) acts on c, theta and q_s as -nu A q-dot, so backward Euler over h
 // gives q-dot+ = (q-dot + h a) / (1 + h nu), i.e. their explicit rates divided by 1 + h nu. Without
-// it the damper alone limits the step to 2 / nu (the interactive scene's nu = 1000 to 2 ms);
+// it the damper alone limits the step to 2 / nu (the interactive scene's nu = 4000 to 0.5 ms);
 // with it only the global block's 1 / tau does (deform/stability_limit.h). The d rows are
 // implicit_membrane_rates' (h nu M in B); first-order bodies have no such rows to damp.
 void implicit_row_damping(const BodyModel& body, Real h, Eigen::Ref<VecX> rates);
