@@ -51,7 +51,6 @@ namespace pbm {
 // Cost and outcome of one call.
 struct BodyCollisionStats {
   int triangle_pairs = 0;          // candidate triangle pairs after the broadphase
-  int intersecting_triangles = 0;  // of those, pairs whose triangles intersect (step 1)
   int node_tests = 0;              // node-triangle closest-point evaluations
   int contacts = 0;                // node pairs within the margin
   int penetrating = 0;             // of those, interpenetrating before the projection
