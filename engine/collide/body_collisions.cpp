@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 
 #include "collide/body_push.h"
 #include "collide/contact_impulse.h"
@@ -49,6 +50,19 @@ void size_workspace(std::span<const BodyModel> bodies, BodyCollisionWorkspace& c
     s.nu.setZero(body.n_generalized());
     s.g.setZero(body.n_generalized());
     s.delta.setZero(body.n_generalized());
+    const auto& tris = body.tessellation.triangles;
+    s.triangle_start.assign(n + 1, 0);
+    for (const std::array<int, 3>& t : tris) {
+      for (int v : t) ++s.triangle_start[static_cast<std::size_t>(v) + 1];
+    }
+    for (std::size_t k = 1; k <= n; ++k) s.triangle_start[k] += s.triangle_start[k - 1];
+    s.node_triangles.assign(3 * tris.size(), 0);
+    std::vector<int> fill(s.triangle_start.begin(), s.triangle_start.end() - 1);
+    for (std::size_t t = 0; t < tris.size(); ++t) {
+      for (int v : tris[t]) s.node_triangles[fill[v]++] = static_cast<int>(t);
+    }
+    s.seen.assign(tris.size(), 0);
+    s.stamp = 0;
     counts.push_back(static_cast<int>(body.tessellation.triangles.size()));
   }
   resize_broadphase(counts, cws.broadphase);
@@ -60,13 +74,6 @@ void size_workspace(std::span<const BodyModel> bodies, BodyCollisionWorkspace& c
     nodes += static_cast<std::size_t>(body.n_nodes());
   }
   cws.pairs.reserve(2 * triangles);
-  cws.candidates.reserve(6 * triangles);
-  cws.gathered.reserve(6 * triangles);
-  cws.node_base.assign(bodies.size() + 1, 0);
-  for (std::size_t b = 0; b < bodies.size(); ++b) {
-    cws.node_base[b + 1] = cws.node_base[b] + bodies[b].n_nodes();
-  }
-  cws.node_start.assign(nodes + 1, 0);
   cws.contacts.reserve(nodes);
 }
 
@@ -223,116 +230,132 @@ void make_basis(const Vec3& n, Mat3& basis) {
   basis.col(2) = n.cross(t1);
 }
 
-// Steps 1 and 2: candidate triangle pairs, their intersection test, node candidates.
+// Triangle `key` of each pair, with its partner `1 - key`, bucketed by a counting sort (the order
+// within a bucket is the traversal's; pair_nodes does not depend on it).
+void bucket_pairs(const std::vector<std::array<int, 2>>& pairs, int key, int n_triangles,
+                  BodyCollisionWorkspace::Side& side) {
+  std::vector<int>& start = side.start;
+  start.assign(static_cast<std::size_t>(n_triangles) + 2, 0);
+  for (const std::array<int, 2>& p : pairs) ++start[p[key] + 2];
+  for (std::size_t t = 2; t < start.size(); ++t) start[t] += start[t - 1];
+  side.partners.resize(pairs.size());
+  // start[t + 1] runs from the start of t's bucket to its end, which leaves start[t] its start.
+  for (const std::array<int, 2>& p : pairs) side.partners[start[p[key] + 1]++] = p[1 - key];
+}
+
+BodyCollisionWorkspace::Side& next_side(BodyCollisionWorkspace& cws, int body, int other) {
+  if (static_cast<int>(cws.sides.size()) == cws.n_sides) cws.sides.emplace_back();
+  BodyCollisionWorkspace::Side& side = cws.sides[cws.n_sides++];
+  side.body = body;
+  side.other = other;
+  return side;
+}
+
+// Step 1: the triangle pairs of each pair of bodies whose boxes overlap, bucketed by triangle
+// on both sides.
 void gather_candidates(const BodyCollisionModel& model, std::span<const BodyModel> bodies,
                        BodyCollisionWorkspace& cws, BodyCollisionStats& stats) {
-  std::vector<BodyCollisionWorkspace::Candidate>& gathered = cws.gathered;
-  gathered.clear();
+  cws.n_sides = 0;
   const int n_bodies = static_cast<int>(bodies.size());
   for (int a = 0; a < n_bodies; ++a) {
     for (int b = a + 1; b < n_bodies; ++b) {
       if (!cws.broadphase.body_boxes[a].overlaps(cws.broadphase.body_boxes[b])) continue;
       if (model.joined_pair(a, b)) continue;
       cws.pairs.clear();
-      collect_triangle_pairs(a, b, cws.broadphase, cws.pairs);
-      const auto& tri_a = bodies[a].tessellation.triangles;
-      const auto& tri_b = bodies[b].tessellation.triangles;
-      // Every node of a pair of overlapping boxes is a candidate, whether the triangles
-      // intersect or not (a node near a face is within the margin before they do): testing
-      // them, for a count nobody read, was 11% of the see-saw's run.
-      for (const std::array<int, 2>& p : cws.pairs) {
-        const std::array<int, 3>& ta = tri_a[p[0]];
-        const std::array<int, 3>& tb = tri_b[p[1]];
-        ++stats.triangle_pairs;
-        for (int v : ta) gathered.push_back({a, v, b, p[1]});
-        for (int v : tb) gathered.push_back({b, v, a, p[0]});
-      }
+      // Unsorted: a comparison sort of the pairs (for an order independent of the trees'
+      // history) was 7% of the see-saw's run; the buckets and pair_nodes' tie-break make the
+      // result independent of it instead.
+      collect_overlapping_triangles(a, b, cws.broadphase, cws.pairs);
+      if (cws.pairs.empty()) continue;
+      stats.triangle_pairs += static_cast<int>(cws.pairs.size());
+      const int n_a = static_cast<int>(bodies[a].tessellation.triangles.size());
+      const int n_b = static_cast<int>(bodies[b].tessellation.triangles.size());
+      bucket_pairs(cws.pairs, 0, n_a, next_side(cws, a, b));
+      bucket_pairs(cws.pairs, 1, n_b, next_side(cws, b, a));
     }
   }
-  // Sorted by (body, node, other, triangle), duplicates removed. A node lies in about six
-  // triangles, each paired with the same triangles of the other body, so the list holds each
-  // candidate several times; one sort of all of it was 40% of the see-saw's step. The same order
-  // by a counting sort on the node (body-major) and a sort of each node's few entries.
-  std::vector<int>& start = cws.node_start;
-  std::fill(start.begin(), start.end(), 0);
-  for (const auto& c : gathered) ++start[cws.node_base[c.body] + c.node + 1];
-  for (std::size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
-  cws.candidates.resize(gathered.size());
-  for (const auto& c : gathered) cws.candidates[start[cws.node_base[c.body] + c.node]++] = c;
-  // start[i] is now the end of node i's run, the beginning of node i + 1's. Within a run body and
-  // node are equal, so (other, triangle) packed in one word orders it as the full comparison
-  // would, with one compare instead of four.
-  const auto key = [](const BodyCollisionWorkspace::Candidate& c) {
-    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(c.other)) << 32) |
-           static_cast<std::uint32_t>(c.triangle);
-  };
-  auto first = cws.candidates.begin();
-  for (std::size_t i = 0; i + 1 < start.size(); ++i) {
-    const auto last = cws.candidates.begin() + start[i];
-    if (last - first > 1) {
-      std::sort(first, last, [&](const auto& l, const auto& r) { return key(l) < key(r); });
-    }
-    first = last;
-  }
-  cws.candidates.erase(std::unique(cws.candidates.begin(), cws.candidates.end()),
-                       cws.candidates.end());
+  cws.side_order.resize(static_cast<std::size_t>(cws.n_sides));
+  for (int k = 0; k < cws.n_sides; ++k) cws.side_order[k] = k;
+  std::sort(cws.side_order.begin(), cws.side_order.end(), [&](int l, int r) {
+    const auto& sl = cws.sides[l];
+    const auto& sr = cws.sides[r];
+    return std::pair(sl.body, sl.other) < std::pair(sr.body, sr.other);
+  });
 }
 
-// Step 2: each candidate node with its closest triangle point of the other body; the pairs
-// within the margin become contacts.
+// Step 2: each node with its closest triangle point of each other body among its candidates (the
+// partners of the triangles around it); the pairs within the margin become contacts, ordered by
+// (body, node, other body). Every node in a pair of overlapping boxes is a candidate, whether
+// the triangles intersect or not: a node near a face is within the margin before they do.
 void pair_nodes(std::span<const BodyModel> bodies, BodyCollisionWorkspace& cws,
                 const BodyCollisionOptions& options, BodyCollisionStats& stats) {
   cws.contacts.clear();
-  const auto& cand = cws.candidates;
-  for (std::size_t first = 0; first < cand.size();) {
+  for (std::size_t first = 0; first < cws.side_order.size();) {
+    const int a = cws.sides[cws.side_order[first]].body;
     std::size_t last = first;
-    const int a = cand[first].body, node = cand[first].node, b = cand[first].other;
+    while (last < cws.side_order.size() && cws.sides[cws.side_order[last]].body == a) ++last;
     const Scratch& sa = cws.bodies[a];
-    const Scratch& sb = cws.bodies[b];
-    const auto& triangles = bodies[b].tessellation.triangles;
-    const Vec3& x = sa.x[node];
-    Real best = 1e300;
-    int best_t = -1;
-    TrianglePoint best_point;
-    for (; last < cand.size() && cand[last].body == a && cand[last].node == node &&
-           cand[last].other == b;
-         ++last) {
-      const std::array<int, 3>& t = triangles[cand[last].triangle];
-      const TrianglePoint cp = closest_point_on_triangle(x, sb.x[t[0]], sb.x[t[1]], sb.x[t[2]]);
-      ++stats.node_tests;
-      const Real d2 = (x - cp.point).squaredNorm();
-      if (d2 < best) {  // ties keep the lowest triangle index: candidates are sorted
-        best = d2;
-        best_t = cand[last].triangle;
-        best_point = cp;
+    for (int node = 0; node < bodies[a].n_nodes(); ++node) {
+      const Vec3& x = sa.x[node];
+      for (std::size_t k = first; k < last; ++k) {
+        const BodyCollisionWorkspace::Side& side = cws.sides[cws.side_order[k]];
+        const int b = side.other;
+        Scratch& sb = cws.bodies[b];
+        if (++sb.stamp == 0) {  // wrapped: no entry may look current
+          std::fill(sb.seen.begin(), sb.seen.end(), 0u);
+          sb.stamp = 1;
+        }
+        const auto& triangles = bodies[b].tessellation.triangles;
+        Real best = 1e300;
+        int best_t = -1;
+        TrianglePoint best_point;
+        for (int j = sa.triangle_start[node]; j < sa.triangle_start[node + 1]; ++j) {
+          const int own = sa.node_triangles[j];
+          for (int e = side.start[own]; e < side.start[own + 1]; ++e) {
+            const int tb = side.partners[e];
+            if (sb.seen[tb] == sb.stamp) continue;
+            sb.seen[tb] = sb.stamp;
+            const std::array<int, 3>& t = triangles[tb];
+            const TrianglePoint cp =
+                closest_point_on_triangle(x, sb.x[t[0]], sb.x[t[1]], sb.x[t[2]]);
+            ++stats.node_tests;
+            const Real d2 = (x - cp.point).squaredNorm();
+            // Ties keep the lowest triangle index, whatever the order of the buckets.
+            if (d2 < best || (d2 == best && tb < best_t)) {
+              best = d2;
+              best_t = tb;
+              best_point = cp;
+            }
+          }
+        }
+        if (best_t < 0) continue;  // no candidate, or no finite distance (left to the guard)
+        const std::array<int, 3>& t = triangles[best_t];
+        const Vec3& w = best_point.weights;
+        Vec3 n = w[0] * sb.normal[t[0]] + w[1] * sb.normal[t[1]] + w[2] * sb.normal[t[2]];
+        if (!(n.norm() > 0)) n = (sb.x[t[1]] - sb.x[t[0]]).cross(sb.x[t[2]] - sb.x[t[0]]);
+        n.normalize();
+        const Vec3 to_node = x - best_point.point;
+        const Real gap = n.dot(to_node);
+        if (gap < -options.max_depth) continue;
+        if (gap >= 0 && std::sqrt(best) >= options.margin) continue;
+        BodyContact c;
+        c.body_a = a;
+        c.node_a = node;
+        c.body_b = b;
+        c.triangle_b = best_t;
+        c.nodes_b = t;
+        c.w_b = w;
+        c.gap = gap;
+        make_basis(n, c.basis);
+        cws.contacts.push_back(c);
+        ++stats.contacts;
+        if (gap < 0) {
+          ++stats.penetrating;
+          stats.max_penetration = std::max(stats.max_penetration, -gap);
+        }
       }
     }
     first = last;
-    if (best_t < 0) continue;  // no finite distance: a non-finite position, left to the guard
-    const std::array<int, 3>& t = triangles[best_t];
-    const Vec3& w = best_point.weights;
-    Vec3 n = w[0] * sb.normal[t[0]] + w[1] * sb.normal[t[1]] + w[2] * sb.normal[t[2]];
-    if (!(n.norm() > 0)) n = (sb.x[t[1]] - sb.x[t[0]]).cross(sb.x[t[2]] - sb.x[t[0]]);
-    n.normalize();
-    const Vec3 to_node = x - best_point.point;
-    const Real gap = n.dot(to_node);
-    if (gap < -options.max_depth) continue;
-    if (gap >= 0 && std::sqrt(best) >= options.margin) continue;
-    BodyContact c;
-    c.body_a = a;
-    c.node_a = node;
-    c.body_b = b;
-    c.triangle_b = best_t;
-    c.nodes_b = t;
-    c.w_b = w;
-    c.gap = gap;
-    make_basis(n, c.basis);
-    cws.contacts.push_back(c);
-    ++stats.contacts;
-    if (gap < 0) {
-      ++stats.penetrating;
-      stats.max_penetration = std::max(stats.max_penetration, -gap);
-    }
   }
 }
 

@@ -3,11 +3,12 @@
 // Runs after integration, in the collision stage beside the obstacles' resolve_penetrations
 // (sec. 5.2.1). The book's steps, as implemented:
 //  1. Polygons that may touch: a Bullet btDbvt per body over its surface triangles, fattened by
-//     the margin (collide/surface_broadphase.h). Each candidate pair of triangles of two bodies
-//     is tested for intersection (Moller, collide/triangle_geometry.h; counted in the
-//     statistics) and marks its nodes.
-//  2. Node pairing: a marked node x of one body is paired with the closest point y = sum w_k x_k
-//     of the other body's candidate triangles (a weighted node of the other model: the book
+//     the margin (collide/surface_broadphase.h). A pair of triangles of two bodies whose boxes
+//     overlap makes each triangle a candidate of the other's nodes (an intersection test would
+//     miss a node near a face before the faces cross). The pairs are bucketed by triangle, and
+//     a node's candidates are read from the buckets of the triangles around it.
+//  2. Node pairing: a node x of one body is paired with the closest point y = sum w_k x_k of
+//     the other body's candidate triangles (a weighted node of the other model: the book
 //     pairs node with node, which lets a coarse mesh slip nodes between nodes). Interpenetration
 //     is the sign of n . (x - y), n the other surface's outward normal at y (interpolated vertex
 //     normals). The book's test (distances to the model frame) holds only for star-shaped models
@@ -38,6 +39,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "collide/body_collision_model.h"
@@ -92,18 +94,25 @@ struct BodyCollisionWorkspace {
     Vec3 shift = Vec3::Zero();  // rigid/global: translation of c by the projection [m]
     bool touched = false;
     bool mass_factored = false;
+    // The triangles around each node (node k's run is node_triangles[triangle_start[k]] ..
+    // node_triangles[triangle_start[k + 1]]), and, per triangle, the node query that last took
+    // it as a candidate (a stamp), so a triangle near several of a node's faces is tested once.
+    std::vector<int> triangle_start, node_triangles;
+    std::vector<std::uint32_t> seen;
+    std::uint32_t stamp = 0;
   };
   std::vector<BodyScratch> bodies;
-  struct Candidate {
-    int body = 0, node = 0, other = 0, triangle = 0;
-    auto operator<=>(const Candidate&) const = default;
+  // Per ordered pair of bodies whose boxes overlap: for each triangle of `body`, the triangles of
+  // `other` whose fattened boxes overlap it, bucketed by a counting sort (triangle t's run is
+  // partners[start[t]] .. partners[start[t + 1]]). The first n_sides are this step's.
+  struct Side {
+    int body = 0, other = 0;
+    std::vector<int> start, partners;
   };
+  std::vector<Side> sides;
+  int n_sides = 0;
+  std::vector<int> side_order;  // this step's sides by (body, other)
   std::vector<std::array<int, 2>> pairs;
-  std::vector<Candidate> candidates;
-  // The candidates as gathered, and per node of all bodies (body-major) where its run starts in
-  // `candidates`: a counting sort by node, then small sorts within a node (gather_candidates).
-  std::vector<Candidate> gathered;
-  std::vector<int> node_start, node_base;
   std::vector<BodyContact> contacts;
   SelfCollisionWorkspace self;  // and x_start, written by record_step_start
 };

@@ -123,8 +123,8 @@ void update_surface_tree(int body, const std::vector<Vec3>& x,
   update_swept_surface_tree(body, x, x, triangles, margin, broadphase);
 }
 
-void collect_triangle_pairs(int body_a, int body_b, SurfaceBroadphase& broadphase,
-                            std::vector<std::array<int, 2>>& pairs) {
+void collect_overlapping_triangles(int body_a, int body_b, SurfaceBroadphase& broadphase,
+                                   std::vector<std::array<int, 2>>& pairs) {
   SurfaceBroadphase::Trees& t = *broadphase.trees;
   std::vector<std::array<int, 2>>& raw = t.raw[0];
   raw.clear();
@@ -134,11 +134,16 @@ void collect_triangle_pairs(int body_a, int body_b, SurfaceBroadphase& broadphas
   tree_a.collideTTpersistentStack(tree_a.m_root, t.tree[body_b]->m_root, collector);
   const std::vector<Box3>& boxes_a = broadphase.boxes[body_a];
   const std::vector<Box3>& boxes_b = broadphase.boxes[body_b];
-  const std::size_t first = pairs.size();
   for (std::array<int, 2> p : raw) {
     if (body_a == body_b && p[0] > p[1]) std::swap(p[0], p[1]);
     if (boxes_a[p[0]].overlaps(boxes_b[p[1]])) pairs.push_back(p);
   }
+}
+
+void collect_triangle_pairs(int body_a, int body_b, SurfaceBroadphase& broadphase,
+                            std::vector<std::array<int, 2>>& pairs) {
+  const std::size_t first = pairs.size();
+  collect_overlapping_triangles(body_a, body_b, broadphase, pairs);
   std::sort(pairs.begin() + static_cast<std::ptrdiff_t>(first), pairs.end());
 }
 

@@ -68,4 +68,9 @@ void update_swept_surface_tree(int body, const std::vector<Vec3>& x_start,
 void collect_triangle_pairs(int body_a, int body_b, SurfaceBroadphase& broadphase,
                             std::vector<std::array<int, 2>>& pairs);
 
+// The same pairs in the trees' traversal order, which depends on their insertion history (a
+// workspace's, not the state's): for callers whose result does not depend on the order.
+void collect_overlapping_triangles(int body_a, int body_b, SurfaceBroadphase& broadphase,
+                                   std::vector<std::array<int, 2>>& pairs);
+
 }  // namespace pbm
