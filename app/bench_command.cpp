@@ -44,7 +44,9 @@ constexpr int kRounds = 5;
 // The substep is the model's: solver.dt, or shorter where the ball's explicit limit is past it
 // (sim/model.h); Bullet steps the same dt.
 struct DeformRace {
-  double ours = 0, bullet = 0;  // fastest round [us/step]
+  // Fastest round [us/step]: ours at the scene's contact quadrature, ours with the centroid rule
+  // (one contact point per triangle, scenes/README.md "tessellation"), Bullet's.
+  double ours = 0, centroid = 0, bullet = 0;
   int nodes = 0, bullet_nodes = 0;
   Real dt = 0;
 };
@@ -63,6 +65,9 @@ DeformRace race(const Scene& base, int resolution, int steps) {
   body.material.nodal_mass = 0;
   body.position = Vec3(-3.0, 0.0, resting_height(body) + kDropHeight);
   Simulation sim(scene);
+  Scene coarse = scene;
+  coarse.bodies[0].tessellation.contact = ContactQuadrature::centroid;
+  Simulation sim_centroid(coarse);
   DeformRace r;
   r.nodes = sim.model.bodies[0].n_nodes();
   r.dt = sim.model.substep;
@@ -76,17 +81,23 @@ DeformRace race(const Scene& base, int resolution, int steps) {
   int evaluations = 0;
   for (int k = 0; k < kWarmUpSteps; ++k) {  // lands, and fills the caches
     advance_substep(sim.world, sim.inputs, sim.state, r.dt, sim.ws, evaluations);
+    advance_substep(sim_centroid.world, sim_centroid.inputs, sim_centroid.state, r.dt,
+                    sim_centroid.ws, evaluations);
     bench::step(*peer, r.dt);
   }
-  r.ours = r.bullet = 1e300;
-  for (int round = 0; round < kRounds; ++round) {
-    auto t0 = Clock::now();
+  const auto time_ours = [&](Simulation& s, double& fastest) {
+    const auto t0 = Clock::now();
     for (int k = 0; k < steps; ++k) {
-      advance_substep(sim.world, sim.inputs, sim.state, r.dt, sim.ws, evaluations);
+      advance_substep(s.world, s.inputs, s.state, r.dt, s.ws, evaluations);
     }
-    r.ours = std::min(r.ours,
-                      std::chrono::duration<double, std::micro>(Clock::now() - t0).count() / steps);
-    t0 = Clock::now();
+    fastest = std::min(
+        fastest, std::chrono::duration<double, std::micro>(Clock::now() - t0).count() / steps);
+  };
+  r.ours = r.centroid = r.bullet = 1e300;
+  for (int round = 0; round < kRounds; ++round) {
+    time_ours(sim, r.ours);
+    time_ours(sim_centroid, r.centroid);
+    const auto t0 = Clock::now();
     for (int k = 0; k < steps; ++k) bench::step(*peer, r.dt);
     r.bullet = std::min(
         r.bullet, std::chrono::duration<double, std::micro>(Clock::now() - t0).count() / steps);
@@ -115,18 +126,20 @@ int run_bench(const BenchOptions& o) {
   }
   std::printf(
       "bench deform: one step of '%s' resting on the ground, fastest of 5 rounds (dt = %g s or the "
-      "ball's stability "
-      "limit, last column; %s integrator) vs Bullet btSoftBody at the same dt\n",
+      "ball's stability limit, last column; %s integrator), at the scene's contact points and "
+      "with one per triangle (\"centroid\"), vs Bullet btSoftBody at the same dt\n",
       scene.name.c_str(), scene.solver.dt, name_of(kIntegratorKindNames, scene.solver.integrator));
-  std::printf("%8s %14s %14s %14s %10s %12s %10s\n", "nodes", "ours us/step", "bullet nodes",
-              "bullet us/step", "ratio", "ours us/node", "dt s");
+  std::printf("%8s %14s %14s %14s %14s %10s %10s %12s %10s\n", "nodes", "ours us/step",
+              "centroid us", "bullet nodes", "bullet us/step", "ratio", "centroid", "ours us/node",
+              "dt s");
   for (int resolution : {8, 16, 32, 64, 128}) {
     const int expected = 2 + resolution * resolution;
     if (expected > o.max_nodes) break;
     const int steps = std::max(10, o.steps * 258 / expected / kRounds);
     const DeformRace r = race(scene, resolution, steps);
-    std::printf("%8d %14.1f %14d %14.1f %10.3f %12.3f %10.4f\n", r.nodes, r.ours, r.bullet_nodes,
-                r.bullet, r.ours / r.bullet, r.ours / r.nodes, r.dt);
+    std::printf("%8d %14.1f %14.1f %14d %14.1f %10.3f %10.3f %12.3f %10.4f\n", r.nodes, r.ours,
+                r.centroid, r.bullet_nodes, r.bullet, r.ours / r.bullet, r.centroid / r.bullet,
+                r.ours / r.nodes, r.dt);
     std::fflush(stdout);
   }
   return 0;

@@ -210,8 +210,8 @@ void gather_pressing_samples(Obstacles obstacles, const BodyModel& body, BodyWor
     const Real phi0 = ws.surface_distance[tri[0]], phi1 = ws.surface_distance[tri[1]],
                phi2 = ws.surface_distance[tri[2]];
     if (std::min({phi0, phi1, phi2}) > band + scale * body.contact_triangle_reach[t]) continue;
-    for (int k = 0; k < kContactSamplesPerTriangle; ++k) {
-      const int index = static_cast<int>(kContactSamplesPerTriangle * t) + k;
+    for (int k = 0; k < body.samples_per_triangle; ++k) {
+      const int index = static_cast<int>(body.samples_per_triangle * t) + k;
       const ContactSample& sample = body.contact_samples[index];
       // Among planes the deepest distance is a minimum of affine functions, concave: at the blend
       // of the nodes it is at least the blend of theirs, and the exact point is within the gap.

@@ -19,6 +19,9 @@ namespace pbm {
 enum class DeformLevel { rigid, global, local, automatic };
 // Tessellation of (u,v): quads + pole triangles (fig. 4.1) or all triangles (fig. 4.2).
 enum class TessellationKind { quads, triangles };
+// Where obstacles push on each surface triangle (5.11): three points (Strang-Fix's degree-2
+// rule) or its centroid alone, a third of the contact's cost (deform/body_model.h).
+enum class ContactQuadrature { three_point, centroid };
 // Second-order Lagrangian model (3.13) for animation, first-order model (3.51) for shaping.
 enum class DynamicsOrder { second, first };
 enum class ForceFieldKind { acceleration, force_per_node };
@@ -27,6 +30,7 @@ struct TessellationDef {
   TessellationKind kind = TessellationKind::triangles;
   int rings = 16;     // interior latitude rings between the poles (>= 2)
   int segments = 16;  // nodes around each ring (>= 3); nodes = 2 + rings * segments
+  ContactQuadrature contact = ContactQuadrature::three_point;
 };
 
 struct MaterialDef {

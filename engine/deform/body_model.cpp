@@ -12,16 +12,19 @@ namespace pbm {
 namespace {
 
 // Where obstacles push a local body (collide/rigid_contact.h): material points in each surface
-// triangle (three: barycentric 2/3, 1/6, 1/6, Strang-Fix's degree-2 rule), each with its share of
-// the triangle's area on the initial shape times the book's stiffness per area, sum K_ii / area.
-// Nodes alone would carry a K_ii each: densest where the (u, v) grid crowds (the poles), and few
-// enough in a contact patch that a resting ball's depth would change as one enters or leaves.
-// The points lie on the exact surface s(u, v): on the flat triangles, the equator's larger
-// chords would sit deeper than the poles' and a ball would roll toward its deepest orientation.
-void build_contact_samples(BodyModel& body, Real contact_stiffness) {
+// triangle (three: barycentric 2/3, 1/6, 1/6, Strang-Fix's degree-2 rule; or the centroid), each
+// with its share of the triangle's area on the initial shape times the book's stiffness per area,
+// sum K_ii / area. Nodes alone would carry a K_ii each: densest where the (u, v) grid crowds (the
+// poles), and few enough in a contact patch that a resting ball's depth would change as one enters
+// or leaves. The points lie on the exact surface s(u, v): on the flat triangles, the equator's
+// larger chords would sit deeper than the poles' and a ball would roll toward its deepest
+// orientation.
+void build_contact_samples(BodyModel& body, ContactQuadrature rule, Real contact_stiffness) {
   const Tessellation& t = body.tessellation;
+  const int per_triangle = contact_samples_per_triangle(rule);
+  body.samples_per_triangle = per_triangle;
   body.contact_samples.clear();
-  body.contact_samples.reserve(kContactSamplesPerTriangle * t.triangles.size());
+  body.contact_samples.reserve(per_triangle * t.triangles.size());
   body.contact_triangle_reach.clear();
   body.sample_grid_u.clear();
   body.sample_grid_v.clear();
@@ -38,16 +41,16 @@ void build_contact_samples(BodyModel& body, Real contact_stiffness) {
     for (int k = 0; k < 3; ++k) {
       if (tri[k] != t.south_pole && tri[k] != t.north_pole) v_ref = t.uv[tri[k]].y();
     }
-    for (int k = 0; k < kContactSamplesPerTriangle; ++k) {
+    for (int k = 0; k < per_triangle; ++k) {
       ContactSample sample;
       sample.nodes = tri;
-      if (kContactSamplesPerTriangle == 1) {
+      if (per_triangle == 1) {
         sample.weights.setConstant(1.0 / 3.0);
       } else {
         sample.weights.setConstant(1.0 / 6.0);
         sample.weights[k] = 2.0 / 3.0;
       }
-      sample.stiffness = area / kContactSamplesPerTriangle;
+      sample.stiffness = area / per_triangle;
       Real u = 0, v = 0, v_weight = 0;
       Vec3 blended = Vec3::Zero();
       for (int m = 0; m < 3; ++m) {
@@ -165,7 +168,9 @@ BodyModel build_body_model(const BodyDef& def, Real tau, const std::string& file
   }
   distribute_mass(def.material, file, path, body);
   body.contact_from_material = def.material.contact_stiffness > 0;
-  if (body.has_local) build_contact_samples(body, def.material.contact_stiffness);
+  if (body.has_local) {
+    build_contact_samples(body, def.tessellation.contact, def.material.contact_stiffness);
+  }
   // Inertia of the gauge direction n (deform/body_dynamics.h): omega = sqrt(n^T K_ss n / eta)
   // at most 1 / (4 tau), and at least 1% of the mass times a0^2 so it is never negligible.
   // Parameters whose mass vanishes at some shapes (a bend's location and range weigh nothing

@@ -21,9 +21,13 @@ namespace pbm {
 // A material point of the global surface where obstacles push (5.11), inside a surface triangle:
 // its (u, v), the triangle's nodes and its barycentric weights there (for a cheap first test and
 // for velocities), and its share of the contact stiffness before the obstacle's a [N/m].
-// Three points per surface triangle, not one: with the centroid alone a ball on the ground still
-// creeps toward its deepest orientation (8e-3 m/s against 5e-4 m/s after 10 s).
-inline constexpr int kContactSamplesPerTriangle = 3;
+// Three points per surface triangle by default, not one: with the centroid alone a ball on the
+// ground still creeps toward its deepest orientation (8e-3 m/s against 5e-4 m/s after 10 s). The
+// centroid is the tessellation's "contact" knob for scenes that can afford that error
+// (TessellationDef::contact): a third of the samples to find and push.
+inline constexpr int contact_samples_per_triangle(ContactQuadrature rule) {
+  return rule == ContactQuadrature::centroid ? 1 : 3;
+}
 
 struct ContactSample {
   std::array<int, 3> nodes{};
@@ -56,8 +60,10 @@ struct BodyModel {
   // node, its pair of indices into them: see SignedPowers.
   std::vector<SuperquadricAngles> grid_u, grid_v;
   std::vector<std::array<int, 2>> node_grid;
-  MembraneStiffness stiffness;                 // K_dd element matrices, local bodies only
-  std::vector<ContactSample> contact_samples;  // local bodies, 3 per surface triangle, in order
+  MembraneStiffness stiffness;  // K_dd element matrices, local bodies only
+  // Local bodies: samples_per_triangle (1 or 3) per surface triangle, in order.
+  int samples_per_triangle = 3;
+  std::vector<ContactSample> contact_samples;
   // The material gives the contact stiffness per area (MaterialDef::contact_stiffness): its
   // dashpot is then a damping ratio, not sized on the step (collide/rigid_contact.cpp).
   bool contact_from_material = false;

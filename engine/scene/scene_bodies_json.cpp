@@ -158,6 +158,11 @@ constexpr auto kTessellationFields = std::to_array<Field<TessellationDef>>({
                                        .limit = kMaxRingsOrSegments,
                                        .description = "Nodes around each ring; the body has 2 + "
                                                       "rings * segments nodes."}),
+    choice<&TessellationDef::contact, kContactQuadratureNames>(
+        {.key = "contact",
+         .description = "Where obstacles push on each surface triangle: three points, or the "
+                        "centroid alone (a third of the contact's cost; a resting ball creeps "
+                        "toward its deepest orientation)."}),
 });
 
 }  // namespace

@@ -25,6 +25,8 @@ inline constexpr NameTable<ShapeKind, 3> kShapeKindNames{{{"superquadric", Shape
                                                           {"general", ShapeKind::general}}};
 inline constexpr NameTable<TessellationKind, 2> kTessellationKindNames{
     {{"quads", TessellationKind::quads}, {"triangles", TessellationKind::triangles}}};
+inline constexpr NameTable<ContactQuadrature, 2> kContactQuadratureNames{
+    {{"three-point", ContactQuadrature::three_point}, {"centroid", ContactQuadrature::centroid}}};
 inline constexpr NameTable<IntegratorKind, 4> kIntegratorKindNames{
     {{"euler", IntegratorKind::euler},
      {"rk4", IntegratorKind::rk4},
