@@ -33,16 +33,19 @@ std::vector<std::string> split(const std::string& text) {
 void write_csv(const std::string& path, const TradeoffReport& report) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error(path + ": cannot write");
-  out << "integrator,dt_s,tolerance,resolution,current,ok,wall_s,substeps,evaluations,retries,"
+  out << "integrator,dt_s,tolerance,resolution,contact,current,ok,wall_s,substeps,evaluations,"
+         "retries,"
          "centre_error_m,shape_error,node_rms_m,constraint_violation_m,energy_error,pareto,"
          "message\n";
   char line[512];
   for (const TradeoffPoint& p : report.points) {
     std::snprintf(
-        line, sizeof line, "%s,%.9g,%.3g,%g,%d,%d,%.6g,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%d,",
+        line, sizeof line, "%s,%.9g,%.3g,%g,%s,%d,%d,%.6g,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%d,",
         name_of(kIntegratorKindNames, p.setting.integrator), p.setting.dt, p.setting.tolerance,
-        p.setting.resolution, p.setting.current ? 1 : 0, p.ok ? 1 : 0, p.wall_seconds, p.substeps,
-        p.evaluations, p.retries, p.centre_error, p.shape_error, p.node_rms, p.constraint_violation,
+        p.setting.resolution,
+        p.setting.contact ? name_of(kContactQuadratureNames, *p.setting.contact) : "scene",
+        p.setting.current ? 1 : 0, p.ok ? 1 : 0, p.wall_seconds, p.substeps, p.evaluations,
+        p.retries, p.centre_error, p.shape_error, p.node_rms, p.constraint_violation,
         p.energy_error, p.pareto ? 1 : 0);
     std::string message = p.message;
     for (char& c : message) {

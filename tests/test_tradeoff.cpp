@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "plot_png.h"
 #include "scene_builders.h"
+#include "sim/model.h"
 #include "sim/tradeoff.h"
 
 namespace pbm {
@@ -159,11 +160,32 @@ TEST(Tradeoff, KnobsAroundTheScenesSetting) {
   EXPECT_EQ(default_knobs(scene, {"resolution"}, notes).resolutions,
             (std::vector<Real>{0.5, 1.0, 2.0}));
   EXPECT_TRUE(notes.empty());
-  TradeoffSetting twice{0.01, IntegratorKind::euler, 1e-6, 2.0, false};
+  TradeoffSetting twice{0.01, IntegratorKind::euler, 1e-6, 2.0, false, std::nullopt};
   const Scene refined = apply_setting(scene, twice);
   EXPECT_EQ(refined.bodies[0].tessellation.rings, 16);
   EXPECT_EQ(refined.bodies[0].tessellation.segments, 16);
   EXPECT_THROW(default_knobs(scene, {"speed"}, notes), Error);
+
+  // contact: both rules of a local body's push points, one point per triangle for "centroid".
+  notes.clear();
+  const TradeoffKnobs rules = default_knobs(scene, {"contact"}, notes);
+  ASSERT_EQ(rules.contacts.size(), 2u);
+  EXPECT_EQ(rules.contacts[1], ContactQuadrature::centroid);
+  TradeoffSetting coarse{0.01,  IntegratorKind::euler,      1e-6, 1.0,
+                         false, ContactQuadrature::centroid};
+  EXPECT_NE(coarse.label().find("centroid"), std::string::npos);
+  const Model three = build_model(scene);
+  const Model one = build_model(apply_setting(scene, coarse));
+  const std::size_t triangles = three.bodies[0].tessellation.triangles.size();
+  EXPECT_EQ(three.bodies[0].contact_samples.size(), 3 * triangles);
+  EXPECT_EQ(one.bodies[0].contact_samples.size(), triangles);
+  // A rigid body has no push points: the knob is left out with a note.
+  Scene rigid = scene;
+  rigid.bodies[0].level = DeformLevel::rigid;
+  notes.clear();
+  EXPECT_EQ(default_knobs(rigid, {"contact"}, notes).contacts.size(), 1u);
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("contact left out"), std::string::npos);
 }
 
 TEST(Tradeoff, PlotDrawsItsPointsFrontAndHighlight) {

@@ -471,6 +471,8 @@ void tradeoff_panel(Studio& studio, StudioActions& actions) {
   ImGui::Checkbox("tolerance", &t.tolerance);
   ImGui::SameLine();
   ImGui::Checkbox("resolution", &t.resolution);
+  ImGui::SameLine();
+  ImGui::Checkbox("contact", &t.contact);
   if (p.running) {
     const float fraction = p.total > 0 ? static_cast<float>(p.done) / p.total : 0.0f;
     ImGui::ProgressBar(fraction, ImVec2(-80, 0), p.label.c_str());
@@ -483,6 +485,7 @@ void tradeoff_panel(Studio& studio, StudioActions& actions) {
       if (t.integrator) knobs.push_back("integrator");
       if (t.tolerance) knobs.push_back("tolerance");
       if (t.resolution) knobs.push_back("resolution");
+      if (t.contact) knobs.push_back("contact");
       t.revision = studio.status.scene_revision;
       t.job->start(*studio.status.scene, knobs, t.seconds);
     }

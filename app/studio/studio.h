@@ -65,7 +65,7 @@ struct Studio {
     std::optional<TradeoffReport> report;
     std::uint64_t revision = 0;  // scene revision the report measured
     float seconds = 2;
-    bool dt = true, integrator = true, tolerance = false, resolution = true;
+    bool dt = true, integrator = true, tolerance = false, resolution = true, contact = false;
     int selected = -1;  // point under the last click
   } tradeoff;
   bool dirty() const { return status.scene_revision != saved_revision; }

@@ -115,7 +115,9 @@ std::string TradeoffSetting::label() const {
     std::snprintf(text, sizeof text, "%s dt %g res %gx", name_of(kIntegratorKindNames, integrator),
                   dt, resolution);
   }
-  return text;
+  std::string label = text;
+  if (contact) label += std::string(" ") + name_of(kContactQuadratureNames, *contact);
+  return label;
 }
 
 TradeoffKnobs default_knobs(const Scene& scene, const std::vector<std::string>& names,
@@ -127,6 +129,7 @@ TradeoffKnobs default_knobs(const Scene& scene, const std::vector<std::string>& 
   knobs.integrators = {scene.solver.integrator};
   knobs.tolerances = {scene.solver.tolerance};
   knobs.resolutions = {1.0};
+  knobs.contacts = {std::nullopt};
   for (const std::string& name : names) {
     if (name == "dt") {
       knobs.dt.clear();
@@ -154,9 +157,18 @@ TradeoffKnobs default_knobs(const Scene& scene, const std::vector<std::string>& 
       } else {
         knobs.resolutions = {0.5, 1.0, 2.0};
       }
+    } else if (name == "contact") {
+      bool local = false;
+      for (const BodyDef& body : scene.bodies)
+        local |= body.level != DeformLevel::rigid && body.level != DeformLevel::global;
+      if (local) {
+        knobs.contacts = {ContactQuadrature::three_point, ContactQuadrature::centroid};
+      } else {
+        notes.push_back("contact left out: no body is local, so none has contact points");
+      }
     } else {
       throw Error("", "--knobs",
-                  "unknown knob '" + name + "' (dt, integrator, tolerance, resolution)");
+                  "unknown knob '" + name + "' (dt, integrator, tolerance, resolution, contact)");
     }
   }
   return knobs;
@@ -174,6 +186,7 @@ Scene apply_setting(const Scene& scene, const TradeoffSetting& setting) {
     TessellationDef& t = body.tessellation;
     t.rings = std::max(2, static_cast<int>(std::lround(t.rings * setting.resolution)));
     t.segments = std::max(3, static_cast<int>(std::lround(t.segments * setting.resolution)));
+    if (setting.contact) t.contact = *setting.contact;
   }
   return s;
 }
@@ -183,22 +196,39 @@ TradeoffReport run_tradeoff(const Scene& scene, const TradeoffOptions& options,
   TradeoffReport report;
   const TradeoffKnobs& k = options.knobs;
   std::vector<TradeoffSetting> settings;
-  for (Real resolution : k.resolutions)
-    for (IntegratorKind integrator : k.integrators) {
-      const bool adaptive = integrator == IntegratorKind::rk45;
-      for (Real tolerance : adaptive ? k.tolerances : std::vector<Real>{scene.solver.tolerance})
-        for (Real dt : k.dt) {
-          TradeoffSetting s{dt, integrator, tolerance, resolution, false};
-          s.current = resolution == 1.0 && integrator == scene.solver.integrator &&
-                      dt == std::min(scene.solver.dt, 1.0 / scene.solver.fps) &&
-                      (!adaptive || tolerance == scene.solver.tolerance);
-          settings.push_back(s);
-        }
+  // A contact rule is the scene's own where every body already has it.
+  const auto scenes_own = [&](const std::optional<ContactQuadrature>& rule) {
+    if (!rule) return true;
+    for (const BodyDef& body : scene.bodies) {
+      if (body.tessellation.contact != *rule) return false;
     }
-  report.reference =
-      TradeoffSetting{*std::min_element(k.dt.begin(), k.dt.end()), IntegratorKind::rk45,
-                      options.reference_tolerance,
-                      *std::max_element(k.resolutions.begin(), k.resolutions.end()), false};
+    return true;
+  };
+  const std::vector<std::optional<ContactQuadrature>> contacts =
+      k.contacts.empty() ? std::vector<std::optional<ContactQuadrature>>{std::nullopt} : k.contacts;
+  for (const std::optional<ContactQuadrature>& contact : contacts)
+    for (Real resolution : k.resolutions)
+      for (IntegratorKind integrator : k.integrators) {
+        const bool adaptive = integrator == IntegratorKind::rk45;
+        for (Real tolerance : adaptive ? k.tolerances : std::vector<Real>{scene.solver.tolerance})
+          for (Real dt : k.dt) {
+            TradeoffSetting s{dt, integrator, tolerance, resolution, false, contact};
+            s.current = resolution == 1.0 && integrator == scene.solver.integrator &&
+                        dt == std::min(scene.solver.dt, 1.0 / scene.solver.fps) &&
+                        (!adaptive || tolerance == scene.solver.tolerance) && scenes_own(contact);
+            settings.push_back(s);
+          }
+      }
+  report.reference = TradeoffSetting{*std::min_element(k.dt.begin(), k.dt.end()),
+                                     IntegratorKind::rk45,
+                                     options.reference_tolerance,
+                                     *std::max_element(k.resolutions.begin(), k.resolutions.end()),
+                                     false,
+                                     std::nullopt};
+  // The three-point rule, the more accurate, when the sweep compares the rules.
+  for (const std::optional<ContactQuadrature>& rule : k.contacts) {
+    if (rule) report.reference.contact = ContactQuadrature::three_point;
+  }
   const int total = static_cast<int>(settings.size()) + 1;
   progress(0, total, "reference: " + report.reference.label());
   const Trajectory ref = record(apply_setting(scene, report.reference), options.seconds, cancel);

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <atomic>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,8 @@ struct TradeoffSetting {
   Real tolerance = 0;    // solver.tolerance (rk45)
   Real resolution = 1;   // rings and segments of every body, times this
   bool current = false;  // the scene's own setting
+  // tessellation.contact of every local body; unset: each body's own
+  std::optional<ContactQuadrature> contact;
   std::string label() const;
 };
 
@@ -45,6 +48,8 @@ struct TradeoffKnobs {
   std::vector<IntegratorKind> integrators;  // rk45 runs once per tolerance
   std::vector<Real> tolerances;
   std::vector<Real> resolutions;
+  // Empty or {unset}: the bodies' own.
+  std::vector<std::optional<ContactQuadrature>> contacts{std::nullopt};
 };
 
 struct TradeoffOptions {
@@ -61,11 +66,12 @@ struct TradeoffReport {
   bool cancelled = false;
 };
 
-// The knobs named (dt, integrator, tolerance, resolution) at values around the scene's: dt at
-// 2, 1, 1/2, 1/4 times the scene's (at most a frame), euler, rk4 and implicit, rk45 at 1e-3,
-// 1e-4, 1e-5, resolution 1/2, 1 and 2 times. Resolution is left out (with a note) when a body's
-// mass is given per node (`nodal_mass`): refining it changes the physics. Throws pbm::Error
-// naming an unknown knob.
+// The knobs named (dt, integrator, tolerance, resolution, contact) at values around the scene's:
+// dt at 2, 1, 1/2, 1/4 times the scene's (at most a frame), euler, rk4 and implicit, rk45 at
+// 1e-3, 1e-4, 1e-5, resolution 1/2, 1 and 2 times, contact at both rules of
+// tessellation.contact. Resolution is left out (with a note) when a body's mass is given per
+// node (`nodal_mass`): refining it changes the physics; contact, when no body is local (only
+// local bodies have contact points). Throws pbm::Error naming an unknown knob.
 TradeoffKnobs default_knobs(const Scene& scene, const std::vector<std::string>& names,
                             std::vector<std::string>& notes);
 
