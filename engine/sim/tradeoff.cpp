@@ -129,7 +129,6 @@ TradeoffKnobs default_knobs(const Scene& scene, const std::vector<std::string>& 
   knobs.integrators = {scene.solver.integrator};
   knobs.tolerances = {scene.solver.tolerance};
   knobs.resolutions = {1.0};
-  knobs.contacts = {std::nullopt};
   for (const std::string& name : names) {
     if (name == "dt") {
       knobs.dt.clear();
