@@ -6,6 +6,7 @@
 
 #include "deform/body_dynamics.h"
 #include "deform/shape_parameters.h"
+#include "deform/superquadric.h"
 #include "scene_builders.h"
 #include "sim/simulation.h"
 
@@ -129,6 +130,47 @@ TEST(BodyDynamics, MassBlockIsTheSumOfTheNodesPTransposeP) {
     expected.bottomRightCorner(ns, ns) += body.parameter_inertia * n * n.transpose();
     EXPECT_LT((ws.A - expected).cwiseAbs().maxCoeff(), 1e-12 * expected.cwiseAbs().maxCoeff())
         << "shape " << static_cast<int>(shape);
+  }
+}
+
+// The superquadric's kinematics pass writes s_i and J_i itself (deform/body_dynamics.cpp,
+// superquadric_kinematics): s_i must be bitwise (2.7) as evaluate_superquadric gives it (the
+// contact pass reuses whichever computed it), J_i its (2.9), and p_i-dot = J_i q_s-dot + d_i-dot,
+// at a shape away from the sphere with every q_s moving.
+TEST(BodyDynamics, SuperquadricKinematicsAreTheShapesAndItsJacobian) {
+  BodyDef b = test::ball(DeformLevel::local, 8);
+  b.q_s = default_shape_parameters(ShapeKind::superquadric);
+  b.q_s[1] = 1.3;
+  b.q_s[3] = 0.8;
+  b.q_s[4] = 0.7;
+  b.q_s[5] = 1.4;
+  b.q_s0 = b.q_s;
+  b.k_s = VecX::Constant(b.q_s.size(), 2000.0);
+  Simulation sim(test::free_space(b));
+  const BodyModel& body = sim.model.bodies[0];
+  ASSERT_EQ(body.n_s, 6);
+  auto v = body_v(body, sim.state.v);
+  auto d_dot = v.segment(body.layout.displacement_in_v(), 3 * body.n_nodes());
+  for (int i = 0; i < d_dot.size(); ++i) d_dot[i] = 0.02 * std::cos(0.7 * i);
+  VecX q_s_dot(6);
+  q_s_dot << 0.3, -0.2, 0.5, 0.1, -0.4, 0.6;
+  v.segment(BodyLayout::kShapeInV, 6) = q_s_dot;
+  BodyWorkspace& ws = sim.ws.bodies[0];
+  const auto qc = body_q(body, std::as_const(sim.state.q));
+  const auto vc = body_v(body, std::as_const(sim.state.v));
+  compute_body_kinematics(body, qc, vc, ws);
+  const VecX q_s = shape_of(body.layout, qc);
+  for (int i = 0; i < body.n_nodes(); ++i) {
+    Vec3 same_basis, e;
+    SuperquadricJacobian J;
+    evaluate_superquadric(q_s, ws.basis[i], 1.0, same_basis, nullptr);
+    EXPECT_EQ(ws.s[i], same_basis) << "node " << i;  // bitwise
+    evaluate_superquadric(q_s, body.node_angles[i], 1.0, e, &J);
+    EXPECT_LT((ws.s[i] - e).norm(), 1e-14) << "node " << i;
+    const MatX Jt = ws.Jt.middleCols(3 * i, 3);
+    EXPECT_LT((Jt.transpose() - J).cwiseAbs().maxCoeff(), 1e-13) << "node " << i;
+    const Vec3 expected = J * q_s_dot + d_dot.segment<3>(3 * i);
+    EXPECT_LT((ws.p_dot[i] - expected).norm(), 1e-13) << "node " << i;
   }
 }
 

@@ -485,12 +485,9 @@ void resolve_compliant(Obstacles obstacles, const BodyModel& body, Eigen::Ref<Ve
       add_Jt_y(ws, i, y, 1.0, column.data() + BodyLayout::kShapeInV);
     }
   }
-  const MatX& V = ws.A_eigen.eigenvectors();
-  auto VtG = im.VtG.leftCols(m);
   auto AG = im.AG.leftCols(m);
-  VtG.noalias() = V.transpose() * G;
-  VtG = ws.A_inverse_eigenvalues.asDiagonal() * VtG;
-  AG.noalias() = V * VtG;
+  AG = G;
+  ws.A_solver.solve_in_place(AG);
   im.global.topLeftCorner(m, m).noalias() = G.transpose() * AG;
   implicit_node_correction(body, ws);
   im.dnu.noalias() = AG * im.lambda.head(m);  // change of (R^T c-dot, omega, q_s-dot)

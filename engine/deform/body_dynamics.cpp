@@ -1,5 +1,6 @@
 #include "deform/body_dynamics.h"
 
+#include <cassert>
 #include <cmath>
 #include <cstring>
 
@@ -29,11 +30,139 @@ void add_Pt(const BodyModel& body, const BodyWorkspace& ws, int i, const Vec3& y
   if (body.n_s > 0) add_Jt_y(ws, i, y, 1.0, out.data() + BodyLayout::kShapeInV);
 }
 
+// sum_i P_i^T r_i into r_g with r_i = R^T f_i - m_i a_i (3.13), and for local bodies
+// sum_i P_i^T (r_i - (K_dd q_d)_i) into b.
+template <class Vec>
+void accumulate_node_forces(const BodyModel& body, const BodyWorkspace& ws, bool second, bool local,
+                            Vec& r_g, Vec& b) {
+  r_g.setZero();
+  b.setZero();
+  const Mat3 Rt = ws.R.transpose();
+  for (int i = 0; i < body.n_nodes(); ++i) {
+    Vec3 r = Rt * ws.force[i];                        // f_i in the body frame (3.48)
+    if (second) r -= body.node_mass[i] * ws.a_vp[i];  // g_q (3.24)
+    add_Pt(body, ws, i, r, r_g);
+    if (local) {
+      r -= ws.K_q.segment<3>(3 * i);
+      add_Pt(body, ws, i, r, b);
+    }
+  }
+}
+
 // P_i g for a k-vector g: g_c + g_omega x p_i + J_i g_s.
 Vec3 apply_P(const BodyModel& body, const BodyWorkspace& ws, int i, const VecX& g) {
   Vec3 r = linear_part(g) + angular_part(g).cross(ws.p[i]);
   if (body.n_s > 0) r += J_times(ws, i, g.data() + BodyLayout::kShapeInV);
   return r;
+}
+
+// The node sums of (3.16) for the plain superquadric, whose J_i (2.9) has 11 non-zeros of 18:
+// row x of e depends on (a0, a1, eps1, eps2), row y on (a0, a2, eps1, eps2), row z on
+// (a0, a3, eps1). Only those products are formed (26 for J^T J's upper triangle, 26 for p~ J),
+// where the dense 3 x 6 blocks take 108 and 36, and the inertia comes from the second moments
+// sum m p p^T. This pass was a fifth of a resting ball's step at 1k nodes.
+// BodyDynamics.MassBlockIsTheSumOfTheNodesPTransposeP checks it against sum m P^T P.
+struct SuperquadricMassSums {
+  Real m = 0;
+  Vec3 mp = Vec3::Zero();
+  Mat3 inertia = Mat3::Zero();
+  Eigen::Matrix<Real, 3, kSuperquadricParameters> mJ, mpJ;
+  Eigen::Matrix<Real, kSuperquadricParameters, kSuperquadricParameters> JtJ;
+};
+
+SuperquadricMassSums superquadric_mass_sums(const BodyModel& body, const BodyWorkspace& ws) {
+  // Accumulators as plain scalars, so the compiler keeps the hot ones in registers.
+  Real m = 0, mx = 0, my = 0, mz = 0, sxx = 0, syy = 0, szz = 0, sxy = 0, sxz = 0, syz = 0;
+  Real cx0 = 0, cx1 = 0, cx4 = 0, cx5 = 0, cy0 = 0, cy2 = 0, cy4 = 0, cy5 = 0, cz0 = 0, cz3 = 0,
+       cz4 = 0;  // sum m J
+  Real r00 = 0, r02 = 0, r03 = 0, r04 = 0, r05 = 0, r10 = 0, r11 = 0, r13 = 0, r14 = 0, r15 = 0,
+       r20 = 0, r21 = 0, r22 = 0, r24 = 0, r25 = 0;  // sum m p~ J, row and column
+  Real t00 = 0, t01 = 0, t02 = 0, t03 = 0, t04 = 0, t05 = 0, t11 = 0, t14 = 0, t15 = 0, t22 = 0,
+       t24 = 0, t25 = 0, t33 = 0, t34 = 0, t44 = 0, t45 = 0, t55 = 0;  // sum m J^T J, upper
+  const int n = body.n_nodes();
+  for (int i = 0; i < n; ++i) {
+    // Node i's block of Jt is J_i's rows x, y, z, six entries each.
+    const Real* x = ws.Jt.data() + 3 * kSuperquadricParameters * i;
+    const Real* y = x + kSuperquadricParameters;
+    const Real* z = y + kSuperquadricParameters;
+    const Real mi = body.node_mass[i];
+    const Real px = ws.p[i].x(), py = ws.p[i].y(), pz = ws.p[i].z();
+    m += mi;
+    mx += mi * px;
+    my += mi * py;
+    mz += mi * pz;
+    sxx += mi * px * px;
+    syy += mi * py * py;
+    szz += mi * pz * pz;
+    sxy += mi * px * py;
+    sxz += mi * px * pz;
+    syz += mi * py * pz;
+    const Real wx0 = mi * x[0], wx1 = mi * x[1], wx4 = mi * x[4], wx5 = mi * x[5];
+    const Real wy0 = mi * y[0], wy2 = mi * y[2], wy4 = mi * y[4], wy5 = mi * y[5];
+    const Real wz0 = mi * z[0], wz3 = mi * z[3], wz4 = mi * z[4];
+    cx0 += wx0;
+    cx1 += wx1;
+    cx4 += wx4;
+    cx5 += wx5;
+    cy0 += wy0;
+    cy2 += wy2;
+    cy4 += wy4;
+    cy5 += wy5;
+    cz0 += wz0;
+    cz3 += wz3;
+    cz4 += wz4;
+    // Row r of p~ (m J) is p_{r+1} (m J)_{r+2} - p_{r+2} (m J)_{r+1}.
+    r00 += py * wz0 - pz * wy0;
+    r02 -= pz * wy2;
+    r03 += py * wz3;
+    r04 += py * wz4 - pz * wy4;
+    r05 -= pz * wy5;
+    r10 += pz * wx0 - px * wz0;
+    r11 += pz * wx1;
+    r13 -= px * wz3;
+    r14 += pz * wx4 - px * wz4;
+    r15 += pz * wx5;
+    r20 += px * wy0 - py * wx0;
+    r21 -= py * wx1;
+    r22 += px * wy2;
+    r24 += px * wy4 - py * wx4;
+    r25 += px * wy5 - py * wx5;
+    t00 += wx0 * x[0] + wy0 * y[0] + wz0 * z[0];
+    t01 += wx0 * x[1];
+    t02 += wy0 * y[2];
+    t03 += wz0 * z[3];
+    t04 += wx0 * x[4] + wy0 * y[4] + wz0 * z[4];
+    t05 += wx0 * x[5] + wy0 * y[5];
+    t11 += wx1 * x[1];
+    t14 += wx1 * x[4];
+    t15 += wx1 * x[5];
+    t22 += wy2 * y[2];
+    t24 += wy2 * y[4];
+    t25 += wy2 * y[5];
+    t33 += wz3 * z[3];
+    t34 += wz3 * z[4];
+    t44 += wx4 * x[4] + wy4 * y[4] + wz4 * z[4];
+    t45 += wx4 * x[5] + wy4 * y[5];
+    t55 += wx5 * x[5] + wy5 * y[5];
+  }
+  SuperquadricMassSums s;
+  s.m = m;
+  s.mp = Vec3(mx, my, mz);
+  // sum m (|p|^2 I - p p^T) from the second moments.
+  s.inertia << syy + szz, -sxy, -sxz, -sxy, sxx + szz, -syz, -sxz, -syz, sxx + syy;
+  s.mJ << cx0, cx1, 0, 0, cx4, cx5,  //
+      cy0, 0, cy2, 0, cy4, cy5,      //
+      cz0, 0, 0, cz3, cz4, 0;
+  s.mpJ << r00, 0, r02, r03, r04, r05,  //
+      r10, r11, 0, r13, r14, r15,       //
+      r20, r21, r22, 0, r24, r25;
+  s.JtJ << t00, t01, t02, t03, t04, t05,  //
+      t01, t11, 0, 0, t14, t15,           //
+      t02, 0, t22, 0, t24, t25,           //
+      t03, 0, 0, t33, t34, 0,             //
+      t04, t14, t24, t34, t44, t45,       //
+      t05, t15, t25, 0, t45, t55;
+  return s;
 }
 
 }  // namespace
@@ -110,9 +239,7 @@ void resize_workspace(const BodyModel& body, BodyWorkspace& ws) {
   ws.contact_mobility.setZero(samples);
   ws.K_q.setZero(body.has_local ? 3 * n : 0);
   ws.A.setZero(k, k);
-  ws.A_eigen.reserve(k);
-  ws.A_inverse_eigenvalues.setZero(k);
-  ws.A_tmp.setZero(k);
+  ws.A_solver.reserve(k);
   ws.r_g.setZero(k);
   ws.b.setZero(k);
   ws.gamma.setZero(k);
@@ -164,10 +291,89 @@ void compute_reference_positions(const BodyModel& body, const VecX& q_s, BodyWor
   ws.shape_has_J = false;
 }
 
+namespace {
+
+// The deformed shapes (and bodies whose shape is fixed): s_i and J_i from the reference shape
+// (2.10)-(2.27), J_i q_s-dot, and J-dot q_s-dot by a second difference of s along q_s-dot
+// (step h; 0 when the accelerations are not wanted).
+template <class Finish>
+void general_kinematics(const BodyModel& body, BodyWorkspace& ws, bool reuse_shape, Real h,
+                        const Finish& finish_node) {
+  const int n = body.n_nodes();
+  const VecX& q_s_dot = ws.q_s_dot;
+  const VecX& q_plus = ws.q_plus;
+  const VecX& q_minus = ws.q_minus;
+  for (int i = 0; i < n; ++i) {
+    const SuperquadricAngles& angles = body.node_angles[i];
+    Vec3 jq = Vec3::Zero();
+    if (body.n_s > 0) {
+      if (!reuse_shape) {
+        evaluate_reference_shape(body.shape, ws.q_s, angles, 1.0, ws.s[i], &ws.J_node);
+        ws.Jt.middleCols(3 * i, 3) = ws.J_node.leftCols(body.n_s).transpose();
+      }
+      ws.p_dot[i] = J_times(ws, i, q_s_dot.data());
+      if (h > 0) {
+        Vec3 s_plus, s_minus;
+        evaluate_reference_shape(body.shape, q_plus, angles, 1.0, s_plus, nullptr);
+        evaluate_reference_shape(body.shape, q_minus, angles, 1.0, s_minus, nullptr);
+        jq = (s_plus - 2.0 * ws.s[i] + s_minus) / (h * h);
+      }
+    } else {
+      ws.s[i] = body.s_fixed[i];
+      ws.p_dot[i].setZero();
+    }
+    finish_node(i, jq);
+  }
+}
+
+// The plain superquadric (n_s = 6): s_i and J_i by (2.7) and (2.9), written straight into J_i's
+// block of Jt with the same expressions as evaluate_superquadric (so s is bitwise the same
+// whichever computed it), and J_i q_s-dot over J_i's 11 non-zeros. About a third cheaper than
+// the general pass, which builds a 3 x 6 Jacobian, copies it transposed and multiplies it whole.
+template <class Finish>
+void superquadric_kinematics(const BodyModel& body, BodyWorkspace& ws, bool reuse_shape,
+                             bool second, const Finish& finish_node) {
+  const int n = body.n_nodes();
+  const VecX& q_s = ws.q_s;
+  const Real a0 = q_s[0], a1 = q_s[1], a2 = q_s[2], a3 = q_s[3];
+  const VecX& r = ws.q_s_dot;
+  const Real r0 = r[0], r1 = r[1], r2 = r[2], r3 = r[3], r4 = r[4], r5 = r[5];
+  for (int i = 0; i < n; ++i) {
+    const SuperquadricBasis& b = ws.basis[i];
+    Real* x = ws.Jt.data() + 3 * kSuperquadricParameters * i;  // row x of J_i, then y, z
+    Real* y = x + kSuperquadricParameters;
+    Real* z = y + kSuperquadricParameters;
+    if (!reuse_shape) {
+      ws.s[i] = Vec3(a0 * (a1 * b.C_u * b.C_v), a0 * (a2 * b.C_u * b.S_v), a0 * (a3 * b.S_u));
+      x[0] = a1 * b.C_u * b.C_v;
+      x[1] = a0 * b.C_u * b.C_v;
+      x[2] = x[3] = 0;
+      x[4] = a0 * a1 * b.lnC_u * b.C_v;
+      x[5] = a0 * a1 * b.C_u * b.lnC_v;
+      y[0] = a2 * b.C_u * b.S_v;
+      y[1] = y[3] = 0;
+      y[2] = a0 * b.C_u * b.S_v;
+      y[4] = a0 * a2 * b.lnC_u * b.S_v;
+      y[5] = a0 * a2 * b.C_u * b.lnS_v;
+      z[0] = a3 * b.S_u;
+      z[1] = z[2] = z[5] = 0;
+      z[3] = a0 * b.S_u;
+      z[4] = a0 * a3 * b.lnS_u;
+    }
+    ws.p_dot[i] =
+        Vec3(x[0] * r0 + x[1] * r1 + x[4] * r4 + x[5] * r5,
+             y[0] * r0 + y[2] * r2 + y[4] * r4 + y[5] * r5, z[0] * r0 + z[3] * r3 + z[4] * r4);
+    Vec3 jq = Vec3::Zero();
+    if (second) jq = superquadric_second_derivative(q_s, b, body.node_angles[i], 1.0, r);
+    finish_node(i, jq);
+  }
+}
+
+}  // namespace
+
 void compute_body_kinematics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
                              const Eigen::Ref<const VecX>& v, BodyWorkspace& ws,
                              bool with_accelerations) {
-  const int n = body.n_nodes();
   const BodySlices sl = slices(body);
   const Vec3 c = position_of(q);
   ws.R = rotation_from_quaternion(quaternion_of(q));
@@ -201,33 +407,9 @@ void compute_body_kinematics(const BodyModel& body, const Eigen::Ref<const VecX>
     }
   }
   const Vec3 V = ws.R.transpose() * c_dot;
-  for (int i = 0; i < n; ++i) {
-    const SuperquadricAngles& angles = body.node_angles[i];
-    Vec3 jq = Vec3::Zero();
-    if (body.n_s > 0) {
-      if (!reuse_shape) {
-        if (body.shape == ShapeKind::superquadric) {
-          SuperquadricJacobian J_e;
-          evaluate_superquadric(ws.q_s, ws.basis[i], 1.0, ws.s[i], &J_e);
-          ws.Jt.middleCols(3 * i, 3) = J_e.transpose();
-        } else {
-          evaluate_reference_shape(body.shape, ws.q_s, angles, 1.0, ws.s[i], &ws.J_node);
-          ws.Jt.middleCols(3 * i, 3) = ws.J_node.leftCols(body.n_s).transpose();
-        }
-      }
-      ws.p_dot[i] = J_times(ws, i, q_s_dot.data());
-      if (second && body.shape == ShapeKind::superquadric) {
-        jq = superquadric_second_derivative(ws.q_s, ws.basis[i], angles, 1.0, q_s_dot);
-      } else if (h > 0) {
-        Vec3 s_plus, s_minus;
-        evaluate_reference_shape(body.shape, q_plus, angles, 1.0, s_plus, nullptr);
-        evaluate_reference_shape(body.shape, q_minus, angles, 1.0, s_minus, nullptr);
-        jq = (s_plus - 2.0 * ws.s[i] + s_minus) / (h * h);
-      }
-    } else {
-      ws.s[i] = body.s_fixed[i];
-      ws.p_dot[i].setZero();
-    }
+  // The rest of node i from s_i and J_i q_s-dot in p_dot: its dent, world position, velocity and
+  // velocity-product acceleration (3.18).
+  const auto finish_node = [&](int i, const Vec3& jq) {
     ws.p[i] = ws.s[i];
     if (body.has_local) {
       ws.p[i] += q.segment<3>(sl.d_q + 3 * i);
@@ -239,6 +421,12 @@ void compute_body_kinematics(const BodyModel& body, const Eigen::Ref<const VecX>
     if (second) {
       ws.a_vp[i] = omega.cross(omega.cross(ws.p[i])) + 2.0 * omega.cross(ws.p_dot[i]) + jq;
     }
+  };
+  if (body.n_s > 0 && body.shape == ShapeKind::superquadric) {
+    assert(body.n_s == kSuperquadricParameters);
+    superquadric_kinematics(body, ws, reuse_shape, second, finish_node);
+  } else {
+    general_kinematics(body, ws, reuse_shape, h, finish_node);
   }
   if (body.n_s > 0 && !reuse_shape) {
     ws.shape_key = ws.q_s;
@@ -273,7 +461,15 @@ void factor_generalized_mass(const BodyModel& body, const Eigen::Ref<const VecX>
   MatX& mJ = ws.mass_J;
   MatX& mpJ = ws.mass_pJ;
   MatX& JtJ = ws.mass_JtJ;
-  if (ns == kSuperquadricParameters) {
+  if (ns == kSuperquadricParameters && body.shape == ShapeKind::superquadric) {
+    const SuperquadricMassSums sums = superquadric_mass_sums(body, ws);
+    m = sums.m;
+    mp = sums.mp;
+    inertia = sums.inertia;
+    mJ = sums.mJ;
+    mpJ = sums.mpJ;
+    JtJ = sums.JtJ;
+  } else if (ns == kSuperquadricParameters) {
     // One pass over the nodes in fixed-size blocks: m J, m p~ J and m J^T J accumulate in
     // registers, where the run-time path below streams a scaled copy of J^T through three
     // products.
@@ -346,28 +542,16 @@ void factor_generalized_mass(const BodyModel& body, const Eigen::Ref<const VecX>
       A.block(6, 6, ns, ns).noalias() += ws.gauge_scaled * n_gauge.transpose();
     }
   }
-  ws.A_eigen.compute(A);
-  const VecX& lambda = ws.A_eigen.eigenvalues();
-  const Real cutoff = 1e-10 * lambda.cwiseAbs().maxCoeff();
-  for (int j = 0; j < lambda.size(); ++j) {
-    ws.A_inverse_eigenvalues[j] = lambda[j] > cutoff ? 1.0 / lambda[j] : 0.0;
-  }
+  ws.A_solver.compute(A);
 }
 
 void solve_generalized_mass(BodyWorkspace& ws, const VecX& y, VecX& x) {
-  const MatX& V = ws.A_eigen.eigenvectors();
-  ws.A_tmp.noalias() = V.transpose() * y;
-  ws.A_tmp.array() *= ws.A_inverse_eigenvalues.array();
-  x.noalias() = V * ws.A_tmp;
+  ws.A_solver.solve(y, x);
 }
 
 void inverse_effective_masses(BodyWorkspace& ws, const Eigen::Ref<const MatX>& G,
                               Eigen::Ref<VecX> out) {
-  const Eigen::Index m = G.cols();
-  if (ws.contact_rotated.cols() < m) ws.contact_rotated.resize(G.rows(), 2 * m);
-  auto Y = ws.contact_rotated.leftCols(m);
-  Y.noalias() = ws.A_eigen.eigenvectors().transpose() * G;
-  out.noalias() = Y.cwiseAbs2().transpose() * ws.A_inverse_eigenvalues;
+  ws.A_solver.inverse_quadratic_forms(G, out, ws.contact_rotated);
 }
 
 void solve_body_dynamics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
@@ -380,17 +564,7 @@ void solve_body_dynamics(const BodyModel& body, const Eigen::Ref<const VecX>& q,
   // membrane and the local solve are skipped (sim/level_of_detail.h).
   const bool local = body.has_local && !ws.dormant;
   const Mat3 Rt = ws.R.transpose();
-  ws.r_g.setZero();
-  ws.b.setZero();
-  for (int i = 0; i < n; ++i) {
-    Vec3 r = Rt * ws.force[i];                        // f_i in the body frame (3.48)
-    if (second) r -= body.node_mass[i] * ws.a_vp[i];  // g_q (3.24)
-    add_Pt(body, ws, i, r, ws.r_g);
-    if (local) {
-      r -= ws.K_q.segment<3>(3 * i);
-      add_Pt(body, ws, i, r, ws.b);
-    }
-  }
+  accumulate_node_forces(body, ws, second, local, ws.r_g, ws.b);
   // Collision forces on the rigid + global rows (see collide/rigid_contact.h).
   ws.r_g += ws.contact_generalized;
   if (ns > 0) {

@@ -20,8 +20,8 @@
 // d rows only, so the c and theta rows stay exact momentum balances. The solve is then O(nodes):
 //   A alpha = r_g = sum P_i^T (f_i - m_i a_i) - K_ss (q_s - q_s0)                        (3.13)
 //   d_i-ddot = r_i / m_i - P_i A^-1 sum_j P_j^T r_j,  r_i = f_i - m_i a_i - (K_dd q_d)_i
-// with one k x k symmetric eigen-decomposition. A's q_s block is singular too: scaling a0 by
-// (1 + t) and a1..a3 by 1 / (1 + t) leaves s exactly unchanged (every taper, bend, shear and
+// with one k x k Cholesky factor (core/symmetric_solver.h). A's q_s block is singular too: scaling
+// a0 by (1 + t) and a1..a3 by 1 / (1 + t) leaves s exactly unchanged (every taper, bend, shear and
 // twist of (2.10)-(2.26) sees only e and the products a0 a_i), so along
 // n = (a0, -a1, -a2, -a3, 0, ...) / |.| no force moves the shape but K_ss still pulls. That
 // direction alone gets a fictitious inertia eta n n^T (BodyModel::parameter_inertia), sized when
@@ -111,7 +111,7 @@ void factor_generalized_mass(const BodyModel& body, const Eigen::Ref<const VecX>
 
 // g^T A^+ g for each column g of G (k x m) into out(0..m-1): the inverse of the effective mass a
 // generalized force direction meets, e.g. g = P_i^T n for a push along n at node i. One matrix
-// product for all columns. Needs the factored A; uses ws.contact_rotated.
+// triangular solve for all columns. Needs the factored A; uses ws.contact_rotated.
 void inverse_effective_masses(BodyWorkspace& ws, const Eigen::Ref<const MatX>& G,
                               Eigen::Ref<VecX> out);
 

@@ -9,7 +9,7 @@
 #include <Eigen/LU>
 #include <Eigen/SparseCholesky>
 
-#include "core/symmetric_eigen.h"
+#include "core/symmetric_solver.h"
 #include "core/types.h"
 #include "deform/body_model.h"
 #include "deform/superquadric.h"
@@ -58,7 +58,7 @@ struct ImplicitMembraneWorkspace {
   int capacity = 0;
   MatX unit, node_columns, scratch_columns;  // n x capacity: e_i, H_s^-1 e_i, permuted
   MatX system, global;                       // capacity x capacity
-  MatX G, AG, VtG;                           // k x capacity: P_i^T n_i, A^+ of them, V^T of them
+  MatX G, AG;                                // k x capacity: P_i^T n_i and A^+ of them
   VecX lambda, rhs_m;                        // capacity
   VecX change;                               // 3 n: the local change
   VecX dnu;                                  // k: the generalized change
@@ -128,9 +128,7 @@ struct BodyWorkspace {
   unsigned sample_stamp = 0;
   VecX K_q;                       // K_dd q_d, body frame (3 n_nodes)
   MatX A;                         // k x k mass block of the generalized rigid+global coordinates
-  SymmetricEigenSolver A_eigen;   // A = V diag(lambda) V^T
-  VecX A_inverse_eigenvalues;     // 1 / lambda on A's range, 0 on its null space
-  VecX A_tmp;                     // k scratch
+  SymmetricSolver A_solver;       // A^+ (Cholesky, or the pseudo-inverse where A is singular)
   VecX r_g, b, gamma, alpha;      // k-vectors
   MatX mass_J, mass_pJ;           // sum m J_i, sum m p~_i J_i (3 x n_s)
   MatX mass_JtJ;                  // sum m J_i^T J_i (n_s x n_s)

@@ -57,7 +57,6 @@ void reserve_contact_nodes(const BodyModel& body, BodyWorkspace& ws, int m) {
   im.global.setZero(im.capacity, im.capacity);
   im.G.setZero(k, im.capacity);
   im.AG.setZero(k, im.capacity);
-  im.VtG.setZero(k, im.capacity);
   im.lambda.setZero(im.capacity);
   im.rhs_m.setZero(im.capacity);
 }
@@ -119,10 +118,8 @@ void implicit_membrane_rates(const BodyModel& body, const Eigen::Ref<const VecX>
   const Real b = second ? h * h : h / nu;
   factor_system(body, im, a, b);
   stack_P(body, ws, im.P);
-  // A^+ on A's range, from the mass block's eigen-decomposition at this state.
-  const MatX& V = ws.A_eigen.eigenvectors();
-  im.S.noalias() = V * ws.A_inverse_eigenvalues.asDiagonal();
-  im.A_pinv.noalias() = im.S * V.transpose();
+  // A^+ at this state (A's Cholesky factor, or its pseudo-inverse where A is singular).
+  ws.A_solver.pseudo_inverse(im.A_pinv);
   if (second) {
     // g = h d-ddot - h^2 T K d-dot, T y = M^-1 y - P A^+ P^T y.
     im.t3n.setZero();
