@@ -22,12 +22,47 @@ BodySlices slices(const BodyModel& body) {
           body.layout.displacement_in_v()};
 }
 
+// The plain superquadric's J_i (2.9) has 11 non-zeros of 18 (see superquadric_kinematics): row x
+// of e depends on (a0, a1, eps1, eps2), row y on (a0, a2, eps1, eps2), row z on (a0, a3, eps1).
+bool sparse_superquadric(const BodyModel& body) {
+  return body.shape == ShapeKind::superquadric && body.n_s == kSuperquadricParameters;
+}
+
+// J_i^T y added to out, and J_i g, over those non-zeros; J points at node i's block of Jt (rows
+// x, y, z of J_i).
+void add_superquadric_Jt_y(const Real* J, const Vec3& y, Real* out) {
+  const Real* x = J;
+  const Real* u = J + kSuperquadricParameters;
+  const Real* z = J + 2 * kSuperquadricParameters;
+  out[0] += x[0] * y[0] + u[0] * y[1] + z[0] * y[2];
+  out[1] += x[1] * y[0];
+  out[2] += u[2] * y[1];
+  out[3] += z[3] * y[2];
+  out[4] += x[4] * y[0] + u[4] * y[1] + z[4] * y[2];
+  out[5] += x[5] * y[0] + u[5] * y[1];
+}
+Vec3 superquadric_J_times(const Real* J, const Real* g) {
+  const Real* x = J;
+  const Real* u = J + kSuperquadricParameters;
+  const Real* z = J + 2 * kSuperquadricParameters;
+  return Vec3(x[0] * g[0] + x[1] * g[1] + x[4] * g[4] + x[5] * g[5],
+              u[0] * g[0] + u[2] * g[2] + u[4] * g[4] + u[5] * g[5],
+              z[0] * g[0] + z[3] * g[3] + z[4] * g[4]);
+}
+const Real* node_J(const BodyWorkspace& ws, int i) {
+  return ws.Jt.data() + 3 * kSuperquadricParameters * i;
+}
+
 // P_i^T y for P_i = [I, -p~_i, J_i]: (y, p_i x y, J_i^T y).
 template <class Out>
 void add_Pt(const BodyModel& body, const BodyWorkspace& ws, int i, const Vec3& y, Out& out) {
   linear_part(out) += y;
   angular_part(out) += ws.p[i].cross(y);
-  if (body.n_s > 0) add_Jt_y(ws, i, y, 1.0, out.data() + BodyLayout::kShapeInV);
+  if (sparse_superquadric(body)) {
+    add_superquadric_Jt_y(node_J(ws, i), y, out.data() + BodyLayout::kShapeInV);
+  } else if (body.n_s > 0) {
+    add_Jt_y(ws, i, y, 1.0, out.data() + BodyLayout::kShapeInV);
+  }
 }
 
 // sum_i P_i^T r_i into r_g with r_i = R^T f_i - m_i a_i (3.13), and for local bodies
@@ -52,7 +87,11 @@ void accumulate_node_forces(const BodyModel& body, const BodyWorkspace& ws, bool
 // P_i g for a k-vector g: g_c + g_omega x p_i + J_i g_s.
 Vec3 apply_P(const BodyModel& body, const BodyWorkspace& ws, int i, const VecX& g) {
   Vec3 r = linear_part(g) + angular_part(g).cross(ws.p[i]);
-  if (body.n_s > 0) r += J_times(ws, i, g.data() + BodyLayout::kShapeInV);
+  if (sparse_superquadric(body)) {
+    r += superquadric_J_times(node_J(ws, i), g.data() + BodyLayout::kShapeInV);
+  } else if (body.n_s > 0) {
+    r += J_times(ws, i, g.data() + BodyLayout::kShapeInV);
+  }
   return r;
 }
 
@@ -337,10 +376,9 @@ void superquadric_kinematics(const BodyModel& body, BodyWorkspace& ws, bool reus
   const VecX& q_s = ws.q_s;
   const Real a0 = q_s[0], a1 = q_s[1], a2 = q_s[2], a3 = q_s[3];
   const VecX& r = ws.q_s_dot;
-  const Real r0 = r[0], r1 = r[1], r2 = r[2], r3 = r[3], r4 = r[4], r5 = r[5];
   for (int i = 0; i < n; ++i) {
     const SuperquadricBasis& b = ws.basis[i];
-    Real* x = ws.Jt.data() + 3 * kSuperquadricParameters * i;  // row x of J_i, then y, z
+    Real* x = ws.Jt.data() + 3 * kSuperquadricParameters * i;  // rows x, y, z of J_i
     Real* y = x + kSuperquadricParameters;
     Real* z = y + kSuperquadricParameters;
     if (!reuse_shape) {
@@ -360,9 +398,7 @@ void superquadric_kinematics(const BodyModel& body, BodyWorkspace& ws, bool reus
       z[3] = a0 * b.S_u;
       z[4] = a0 * a3 * b.lnS_u;
     }
-    ws.p_dot[i] =
-        Vec3(x[0] * r0 + x[1] * r1 + x[4] * r4 + x[5] * r5,
-             y[0] * r0 + y[2] * r2 + y[4] * r4 + y[5] * r5, z[0] * r0 + z[3] * r3 + z[4] * r4);
+    ws.p_dot[i] = superquadric_J_times(x, r.data());
     Vec3 jq = Vec3::Zero();
     if (second) jq = superquadric_second_derivative(q_s, b, body.node_angles[i], 1.0, r);
     finish_node(i, jq);
@@ -409,7 +445,7 @@ void compute_body_kinematics(const BodyModel& body, const Eigen::Ref<const VecX>
   const Vec3 V = ws.R.transpose() * c_dot;
   // The rest of node i from s_i and J_i q_s-dot in p_dot: its dent, world position, velocity and
   // velocity-product acceleration (3.18).
-  const auto finish_node = [&](int i, const Vec3& jq) {
+  const auto finish_node = [&](int i, const Vec3& jq) __attribute__((always_inline)) {
     ws.p[i] = ws.s[i];
     if (body.has_local) {
       ws.p[i] += q.segment<3>(sl.d_q + 3 * i);
