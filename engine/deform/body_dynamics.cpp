@@ -24,13 +24,13 @@ BodySlices slices(const BodyModel& body) {
 
 // The plain superquadric's J_i (2.9) has 11 non-zeros of 18 (see superquadric_kinematics): row x
 // of e depends on (a0, a1, eps1, eps2), row y on (a0, a2, eps1, eps2), row z on (a0, a3, eps1).
-bool sparse_superquadric(const BodyModel& body) {
+[[gnu::always_inline]] inline bool sparse_superquadric(const BodyModel& body) {
   return body.shape == ShapeKind::superquadric && body.n_s == kSuperquadricParameters;
 }
 
 // J_i^T y added to out, and J_i g, over those non-zeros; J points at node i's block of Jt (rows
 // x, y, z of J_i).
-void add_superquadric_Jt_y(const Real* J, const Vec3& y, Real* out) {
+[[gnu::always_inline]] inline void add_superquadric_Jt_y(const Real* J, const Vec3& y, Real* out) {
   const Real* x = J;
   const Real* u = J + kSuperquadricParameters;
   const Real* z = J + 2 * kSuperquadricParameters;
@@ -41,7 +41,7 @@ void add_superquadric_Jt_y(const Real* J, const Vec3& y, Real* out) {
   out[4] += x[4] * y[0] + u[4] * y[1] + z[4] * y[2];
   out[5] += x[5] * y[0] + u[5] * y[1];
 }
-Vec3 superquadric_J_times(const Real* J, const Real* g) {
+[[gnu::always_inline]] inline Vec3 superquadric_J_times(const Real* J, const Real* g) {
   const Real* x = J;
   const Real* u = J + kSuperquadricParameters;
   const Real* z = J + 2 * kSuperquadricParameters;
@@ -49,13 +49,14 @@ Vec3 superquadric_J_times(const Real* J, const Real* g) {
               u[0] * g[0] + u[2] * g[2] + u[4] * g[4] + u[5] * g[5],
               z[0] * g[0] + z[3] * g[3] + z[4] * g[4]);
 }
-const Real* node_J(const BodyWorkspace& ws, int i) {
+[[gnu::always_inline]] inline const Real* node_J(const BodyWorkspace& ws, int i) {
   return ws.Jt.data() + 3 * kSuperquadricParameters * i;
 }
 
 // P_i^T y for P_i = [I, -p~_i, J_i]: (y, p_i x y, J_i^T y).
 template <class Out>
-void add_Pt(const BodyModel& body, const BodyWorkspace& ws, int i, const Vec3& y, Out& out) {
+[[gnu::always_inline]] inline void add_Pt(const BodyModel& body, const BodyWorkspace& ws, int i,
+                                          const Vec3& y, Out& out) {
   linear_part(out) += y;
   angular_part(out) += ws.p[i].cross(y);
   if (sparse_superquadric(body)) {
@@ -85,7 +86,8 @@ void accumulate_node_forces(const BodyModel& body, const BodyWorkspace& ws, bool
 }
 
 // P_i g for a k-vector g: g_c + g_omega x p_i + J_i g_s.
-Vec3 apply_P(const BodyModel& body, const BodyWorkspace& ws, int i, const VecX& g) {
+[[gnu::always_inline]] inline Vec3 apply_P(const BodyModel& body, const BodyWorkspace& ws, int i,
+                                           const VecX& g) {
   Vec3 r = linear_part(g) + angular_part(g).cross(ws.p[i]);
   if (sparse_superquadric(body)) {
     r += superquadric_J_times(node_J(ws, i), g.data() + BodyLayout::kShapeInV);
