@@ -135,8 +135,9 @@ TEST(BodyDynamics, MassBlockIsTheSumOfTheNodesPTransposeP) {
 
 // The superquadric's kinematics pass writes s_i and J_i itself (deform/body_dynamics.cpp,
 // superquadric_kinematics): s_i must be bitwise (2.7) as evaluate_superquadric gives it (the
-// contact pass reuses whichever computed it), J_i its (2.9), and p_i-dot = J_i q_s-dot + d_i-dot,
-// at a shape away from the sphere with every q_s moving.
+// contact pass reuses whichever computed it), J_i its (2.9), p_i-dot = J_i q_s-dot + d_i-dot and
+// the velocity-product acceleration J-dot q_s-dot as superquadric_second_derivative's series give
+// it, at a shape away from the sphere with every q_s moving.
 TEST(BodyDynamics, SuperquadricKinematicsAreTheShapesAndItsJacobian) {
   BodyDef b = test::ball(DeformLevel::local, 8);
   b.q_s = default_shape_parameters(ShapeKind::superquadric);
@@ -171,6 +172,10 @@ TEST(BodyDynamics, SuperquadricKinematicsAreTheShapesAndItsJacobian) {
     EXPECT_LT((Jt.transpose() - J).cwiseAbs().maxCoeff(), 1e-13) << "node " << i;
     const Vec3 expected = J * q_s_dot + d_dot.segment<3>(3 * i);
     EXPECT_LT((ws.p_dot[i] - expected).norm(), 1e-13) << "node " << i;
+    // With no spin, the velocity-product acceleration (3.18) is J-dot q_s-dot alone.
+    const Vec3 jq =
+        superquadric_second_derivative(q_s, ws.basis[i], body.node_angles[i], 1.0, q_s_dot);
+    EXPECT_LT((ws.a_vp[i] - jq).norm(), 1e-12 * (1 + jq.norm())) << "node " << i;
   }
 }
 
