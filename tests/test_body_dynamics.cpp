@@ -90,7 +90,7 @@ TEST(BodyDynamics, SpinningDeformingFreeBodyConservesMomentaAndEnergy) {
 namespace pbm {
 namespace {
 
-// The mass block (3.16) as the superquadric's fixed-size pass and the run-time path assemble it,
+// The mass block (3.16) as the superquadric's sparse pass and the run-time path assemble it,
 // against sum_i m_i P_i^T P_i built node by node from P_i = [I, -p~_i, J_i] (3.14), plus the
 // parameter inertia floor and the gauge term: for a deformed, spinning superquadric (n_s = 6) and
 // a tapered, bent one (n_s = 11).

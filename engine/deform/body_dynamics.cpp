@@ -1,6 +1,5 @@
 #include "deform/body_dynamics.h"
 
-#include <cassert>
 #include <cmath>
 #include <cstring>
 
@@ -68,9 +67,8 @@ template <class Out>
 
 // sum_i P_i^T r_i into r_g with r_i = R^T f_i - m_i a_i (3.13), and for local bodies
 // sum_i P_i^T (r_i - (K_dd q_d)_i) into b.
-template <class Vec>
 void accumulate_node_forces(const BodyModel& body, const BodyWorkspace& ws, bool second, bool local,
-                            Vec& r_g, Vec& b) {
+                            VecX& r_g, VecX& b) {
   r_g.setZero();
   b.setZero();
   const Mat3 Rt = ws.R.transpose();
@@ -97,10 +95,9 @@ void accumulate_node_forces(const BodyModel& body, const BodyWorkspace& ws, bool
   return r;
 }
 
-// The node sums of (3.16) for the plain superquadric, whose J_i (2.9) has 11 non-zeros of 18:
-// row x of e depends on (a0, a1, eps1, eps2), row y on (a0, a2, eps1, eps2), row z on
-// (a0, a3, eps1). Only those products are formed (26 for J^T J's upper triangle, 22 for p~ J),
-// where the dense 3 x 6 blocks take 108 and 36, and the inertia comes from the second moments
+// The node sums of (3.16) for the plain superquadric over J_i's 11 non-zeros (see
+// sparse_superquadric). Only those products are formed (26 for J^T J's upper triangle, 22 for p~
+// J), where the dense 3 x 6 blocks take 108 and 36, and the inertia comes from the second moments
 // sum m p p^T. This pass was a fifth of a resting ball's step at 1k nodes.
 // BodyDynamics.MassBlockIsTheSumOfTheNodesPTransposeP checks it against sum m P^T P.
 struct SuperquadricMassSums {
@@ -488,8 +485,7 @@ void compute_body_kinematics(const BodyModel& body, const Eigen::Ref<const VecX>
       ws.a_vp[i] = omega.cross(omega.cross(ws.p[i])) + 2.0 * omega.cross(ws.p_dot[i]) + jq;
     }
   };
-  if (body.n_s > 0 && body.shape == ShapeKind::superquadric) {
-    assert(body.n_s == kSuperquadricParameters);
+  if (sparse_superquadric(body)) {
     superquadric_kinematics(body, ws, reuse_shape, second, finish_node);
   } else {
     general_kinematics(body, ws, reuse_shape, h, finish_node);
@@ -527,7 +523,7 @@ void factor_generalized_mass(const BodyModel& body, const Eigen::Ref<const VecX>
   MatX& mJ = ws.mass_J;
   MatX& mpJ = ws.mass_pJ;
   MatX& JtJ = ws.mass_JtJ;
-  if (ns == kSuperquadricParameters && body.shape == ShapeKind::superquadric) {
+  if (sparse_superquadric(body)) {
     const SuperquadricMassSums sums = superquadric_mass_sums(body, ws);
     m = sums.m;
     mp = sums.mp;
@@ -535,32 +531,6 @@ void factor_generalized_mass(const BodyModel& body, const Eigen::Ref<const VecX>
     mJ = sums.mJ;
     mpJ = sums.mpJ;
     JtJ = sums.JtJ;
-  } else if (ns == kSuperquadricParameters) {
-    // One pass over the nodes in fixed-size blocks: m J, m p~ J and m J^T J accumulate in
-    // registers, where the run-time path below streams a scaled copy of J^T through three
-    // products.
-    using Block36 = Eigen::Matrix<Real, 3, kSuperquadricParameters>;
-    using Block6 = Eigen::Matrix<Real, kSuperquadricParameters, kSuperquadricParameters>;
-    Block36 sum_mJ = Block36::Zero(), sum_mpJ = Block36::Zero();
-    Block6 sum_JtJ = Block6::Zero();
-    for (int i = 0; i < n; ++i) {
-      const Eigen::Map<const SuperquadricJt> Jt_i(ws.Jt.data() + 3 * i * ns);
-      const Real mi = body.node_mass[i];
-      const Vec3& p = ws.p[i];
-      m += mi;
-      mp += mi * p;
-      inertia += mi * (p.squaredNorm() * Mat3::Identity() - p * p.transpose());
-      const Block36 mJ_i = mi * Jt_i.transpose();
-      sum_mJ += mJ_i;
-      // Row r of p~ (m J) is p_{r+1} (m J)_{r+2} - p_{r+2} (m J)_{r+1}.
-      sum_mpJ.row(0) += p.y() * mJ_i.row(2) - p.z() * mJ_i.row(1);
-      sum_mpJ.row(1) += p.z() * mJ_i.row(0) - p.x() * mJ_i.row(2);
-      sum_mpJ.row(2) += p.x() * mJ_i.row(1) - p.y() * mJ_i.row(0);
-      sum_JtJ.noalias() += Jt_i * mJ_i;
-    }
-    mJ = sum_mJ;
-    mpJ = sum_mpJ;
-    JtJ = sum_JtJ;
   } else {
     for (int i = 0; i < n; ++i) {
       const Real mi = body.node_mass[i];
@@ -570,7 +540,7 @@ void factor_generalized_mass(const BodyModel& body, const Eigen::Ref<const VecX>
       inertia += mi * (p.squaredNorm() * Mat3::Identity() - p * p.transpose());
     }
   }
-  if (ns > 0 && ns != kSuperquadricParameters) {
+  if (ns > 0 && !sparse_superquadric(body)) {
     using Strided = Eigen::Map<const MatX, 0, Eigen::OuterStride<>>;
     using Coordinates = Eigen::Map<const VecX, 0, Eigen::InnerStride<3>>;
     ws.mass_Jt.noalias() = ws.Jt * ws.node_mass_3.asDiagonal();
