@@ -27,7 +27,8 @@ class SymmetricSolver {
   // B = A^+ B, column by column.
   void solve_in_place(Eigen::Ref<MatX> B);
   // out_j = g_j^T A^+ g_j for the columns g_j of G: the inverse effective masses of directions.
-  // scratch is grown (by doubling) to G's size.
+  // 12 rows under Cholesky (the superquadric's block) are fixed-size products over L^-1's lower
+  // triangle; other sizes and the fallback use scratch, grown (by doubling) to G's size.
   void inverse_quadratic_forms(const Eigen::Ref<const MatX>& G, Eigen::Ref<VecX> out,
                                MatX& scratch);
   // A^+ itself.

@@ -26,49 +26,29 @@ MembraneStiffness build_membrane_stiffness(const Tessellation& t, Real w0, Real 
   MembraneStiffness k;
   k.K_e.reserve(t.elements.size());
   for (const Element& e : t.elements) k.K_e.push_back(element_membrane_stiffness(e, w0, w1));
+  Eigen::SparseMatrix<double, Eigen::RowMajor> rows = assemble_scalar_membrane_stiffness(t, k);
+  rows.makeCompressed();
+  const auto n = static_cast<std::size_t>(rows.rows());
+  const auto nnz = static_cast<std::size_t>(rows.nonZeros());
+  k.row_start.assign(rows.outerIndexPtr(), rows.outerIndexPtr() + n + 1);
+  k.column.assign(rows.innerIndexPtr(), rows.innerIndexPtr() + nnz);
+  k.value.assign(rows.valuePtr(), rows.valuePtr() + nnz);
   return k;
 }
 
 namespace {
 
-// f_i += sum_j K_ij q_j over the element's n nodes; the three components share K (4.52).
-template <int n>
-void add_element_forces(const Eigen::Matrix4d& K, const std::array<int, 4>& nodes, const Real* q,
-                        Real* f) {
-  // Gather the element's nodal displacements once, then f_i += sum_j K_ij q_j per component.
-  Real qx[n], qy[n], qz[n];
-  for (int j = 0; j < n; ++j) {
-    const Real* q_j = q + 3 * nodes[j];
-    qx[j] = q_j[0];
-    qy[j] = q_j[1];
-    qz[j] = q_j[2];
+// (K q)_i for the three coordinates of node i, over its row.
+[[gnu::always_inline]] inline Vec3 row_times(const MembraneStiffness& k, int i, const Real* q) {
+  Real fx = 0, fy = 0, fz = 0;
+  for (int e = k.row_start[i]; e < k.row_start[i + 1]; ++e) {
+    const Real K_ij = k.value[e];
+    const Real* q_j = q + 3 * k.column[e];
+    fx += K_ij * q_j[0];
+    fy += K_ij * q_j[1];
+    fz += K_ij * q_j[2];
   }
-  for (int i = 0; i < n; ++i) {
-    Real fx = 0, fy = 0, fz = 0;
-    for (int j = 0; j < n; ++j) {
-      const Real K_ij = K(j, i);  // symmetric; column access is contiguous
-      fx += K_ij * qx[j];
-      fy += K_ij * qy[j];
-      fz += K_ij * qz[j];
-    }
-    Real* f_i = f + 3 * nodes[i];
-    f_i[0] += fx;
-    f_i[1] += fy;
-    f_i[2] += fz;
-  }
-}
-
-template <int n>
-Real element_energy(const Eigen::Matrix4d& K, const std::array<int, 4>& nodes, const Real* q) {
-  Real E = 0;
-  for (int i = 0; i < n; ++i) {
-    const Real* q_i = q + 3 * nodes[i];
-    for (int j = 0; j < n; ++j) {
-      const Real* q_j = q + 3 * nodes[j];
-      E += K(i, j) * (q_i[0] * q_j[0] + q_i[1] * q_j[1] + q_i[2] * q_j[2]);
-    }
-  }
-  return E;
+  return Vec3(fx, fy, fz);
 }
 
 }  // namespace
@@ -76,18 +56,9 @@ Real element_energy(const Eigen::Matrix4d& K, const std::array<int, 4>& nodes, c
 void add_membrane_forces(const Tessellation& t, const MembraneStiffness& k,
                          const Eigen::Ref<const VecX>& q_d, Eigen::Ref<VecX> f) {
   assert(q_d.size() == 3 * t.node_count() && f.size() == q_d.size());
-  assert(k.K_e.size() == t.elements.size());
+  assert(k.row_start.size() == static_cast<std::size_t>(t.node_count()) + 1);
   const Real* q = q_d.data();
-  Real* out = f.data();
-  const size_t n_elements = t.elements.size();
-  for (size_t e = 0; e < n_elements; ++e) {
-    const std::array<int, 4>& nodes = t.elements[e].nodes;
-    if (nodes[3] >= 0) {
-      add_element_forces<4>(k.K_e[e], nodes, q, out);
-    } else {
-      add_element_forces<3>(k.K_e[e], nodes, q, out);
-    }
-  }
+  for (int i = 0; i < t.node_count(); ++i) f.segment<3>(3 * i) += row_times(k, i, q);
 }
 
 Eigen::SparseMatrix<double> assemble_scalar_membrane_stiffness(const Tessellation& t,
@@ -136,14 +107,11 @@ VecX membrane_stiffness_diagonal(const Tessellation& t, const MembraneStiffness&
 
 Real membrane_energy(const Tessellation& t, const MembraneStiffness& k,
                      const Eigen::Ref<const VecX>& q_d) {
-  assert(q_d.size() == 3 * t.node_count() && k.K_e.size() == t.elements.size());
+  assert(q_d.size() == 3 * t.node_count());
+  assert(k.row_start.size() == static_cast<std::size_t>(t.node_count()) + 1);
   const Real* q = q_d.data();
   Real E = 0;
-  for (size_t e = 0; e < t.elements.size(); ++e) {
-    const std::array<int, 4>& nodes = t.elements[e].nodes;
-    E += nodes[3] >= 0 ? element_energy<4>(k.K_e[e], nodes, q)
-                       : element_energy<3>(k.K_e[e], nodes, q);
-  }
+  for (int i = 0; i < t.node_count(); ++i) E += q_d.segment<3>(3 * i).dot(row_times(k, i, q));
   return 0.5 * E;
 }
 
