@@ -249,7 +249,7 @@ TEST(MembraneStiffness, ConstantDisplacementGivesW0TimesNodalAreas) {
   }
 }
 
-TEST(MembraneStiffness, ElementLoopEqualsAssembledMatrixAndEnergy) {
+TEST(MembraneStiffness, RowPassEqualsTheAssembled3nMatrixAndEnergy) {
   for (const Case& c : kCases) {
     const Tessellation t = tessellate({.kind = c.kind, .rings = c.rings, .segments = c.segments});
     const MembraneStiffness k = build_membrane_stiffness(t, 1.1, 5.0);
