@@ -1,6 +1,7 @@
 #include "collide/rigid_contact.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "collide/implicit_contact.h"
@@ -153,10 +154,12 @@ Vec3 blended_point(const ContactSample& sample, const BodyWorkspace& ws) {
 
 // Signed distance of the sample's point on the global surface c + R s(u, v) (no dent) to the
 // deepest obstacle; s is evaluated exactly only near an obstacle. Sets s (body frame), o and n.
-Real sample_distance(Obstacles obstacles, const BodyModel& body, const ContactSample& sample,
-                     BodyWorkspace& ws, const Vec3& c, Real band, Vec3& s, int& o, Vec3& n) {
+// distance(s, o, n) is the deepest obstacle's signed distance of the body-frame point s.
+template <class Distance>
+Real sample_distance(const BodyModel& body, const ContactSample& sample, BodyWorkspace& ws,
+                     Real band, const Distance& distance, Vec3& s, int& o, Vec3& n) {
   s = blended_point(sample, ws);
-  const Real screen = deepest(obstacles, c + ws.R * s, o, n);
+  const Real screen = distance(s, o, n);
   if (screen > band + 4.0 * body.contact_sample_gap * ws.q_s[0] / body.q_s_fixed[0]) return screen;
   if (body.shape == ShapeKind::superquadric) {
     // The superquadric from its latitude's and longitude's powers, shared by many samples.
@@ -174,7 +177,7 @@ Real sample_distance(Obstacles obstacles, const BodyModel& body, const ContactSa
   } else {
     evaluate_reference_shape(body.shape, ws.q_s, sample.angles, 1.0, s, nullptr);
   }
-  return deepest(obstacles, c + ws.R * s, o, n);
+  return distance(s, o, n);
 }
 
 // c, from any node's x = c + R p.
@@ -182,25 +185,29 @@ Vec3 frame_origin(const BodyWorkspace& ws) {
   return ws.x[0] - ws.R * ws.p[0];
 }
 
+// Planes seen from the body frame: n . (c + R s - x_o) = (R^T n) . s + n . (c - x_o), so a
+// body-frame point's distance is one dot product, where the world form rotates the point first:
+// 28% of gather_pressing_samples' instructions on a resting 1k-node ball went to those rotations
+// and the obstacle loop's copies.
+constexpr int kBodyFramePlanes = 8;
+struct BodyFramePlanes {
+  int count = 0;
+  std::array<Vec3, kBodyFramePlanes> normal;  // R^T n, body frame
+  std::array<Real, kBodyFramePlanes> offset;  // n . (c - x_o)
+};
+
 // Fills ws.pressing with the samples whose point on the global surface is inside an obstacle, or
 // within `band` of one (the implicit contact's candidates, collide/implicit_contact.h).
 // A signed distance is 1-Lipschitz, so a sample is at least its nearest node's distance minus its
 // triangle's reach: triangles whose nodes all stand farther are skipped unevaluated.
-void gather_pressing_samples(Obstacles obstacles, const BodyModel& body, BodyWorkspace& ws,
-                             const Vec3& c, Real band = 0) {
-  ws.pressing.clear();
-  if (!body.has_local || obstacles.empty()) return;
-  if (++ws.sample_stamp == 0) {  // wrapped: no entry may look current
-    std::fill(ws.sample_u_stamp.begin(), ws.sample_u_stamp.end(), 0u);
-    std::fill(ws.sample_v_stamp.begin(), ws.sample_v_stamp.end(), 0u);
-    ws.sample_stamp = 1;
-  }
-  bool all_planes = true;
-  for (const ObstacleModel& o : obstacles) all_planes &= o.kind == ObstacleKind::plane;
+// all_planes: every obstacle is a plane (then the deepest distance is concave, see below).
+template <class Distance>
+void gather_samples(const BodyModel& body, BodyWorkspace& ws, Real band, bool all_planes,
+                    const Distance& distance) {
   for (int i = 0; i < body.n_nodes(); ++i) {
     int o;
     Vec3 n;
-    ws.surface_distance[i] = deepest(obstacles, c + ws.R * ws.s[i], o, n);
+    ws.surface_distance[i] = distance(ws.s[i], o, n);
   }
   // The reach and the gap were measured on the initial shape; a0 scales them, and the factor 2
   // covers the rest of a shape's change.
@@ -224,11 +231,49 @@ void gather_pressing_samples(Obstacles obstacles, const BodyModel& body, BodyWor
       }
       BodyWorkspace::PressingPoint point;
       point.sample = index;
-      point.phi = sample_distance(obstacles, body, body.contact_samples[index], ws, c, band,
-                                  point.s, point.obstacle, point.n);
+      point.phi =
+          sample_distance(body, sample, ws, band, distance, point.s, point.obstacle, point.n);
       if (point.phi < band) ws.pressing.push_back(point);
     }
   }
+}
+
+void gather_pressing_samples(Obstacles obstacles, const BodyModel& body, BodyWorkspace& ws,
+                             const Vec3& c, Real band = 0) {
+  ws.pressing.clear();
+  if (!body.has_local || obstacles.empty()) return;
+  if (++ws.sample_stamp == 0) {  // wrapped: no entry may look current
+    std::fill(ws.sample_u_stamp.begin(), ws.sample_u_stamp.end(), 0u);
+    std::fill(ws.sample_v_stamp.begin(), ws.sample_v_stamp.end(), 0u);
+    ws.sample_stamp = 1;
+  }
+  bool all_planes = true;
+  for (const ObstacleModel& o : obstacles) all_planes &= o.kind == ObstacleKind::plane;
+  if (all_planes && obstacles.size() <= kBodyFramePlanes) {
+    BodyFramePlanes planes;
+    planes.count = static_cast<int>(obstacles.size());
+    for (int o = 0; o < planes.count; ++o) {
+      planes.normal[o] = ws.R.transpose() * obstacles[o].normal;
+      planes.offset[o] = obstacles[o].normal.dot(c - obstacles[o].point);
+    }
+    gather_samples(body, ws, band, true, [&](const Vec3& s, int& which, Vec3& normal) {
+      Real best = planes.normal[0].dot(s) + planes.offset[0];
+      which = 0;
+      for (int o = 1; o < planes.count; ++o) {
+        const Real d = planes.normal[o].dot(s) + planes.offset[o];
+        if (d < best) {
+          best = d;
+          which = o;
+        }
+      }
+      normal = obstacles[which].normal;
+      return best;
+    });
+    return;
+  }
+  gather_samples(body, ws, band, all_planes, [&](const Vec3& s, int& which, Vec3& normal) {
+    return deepest(obstacles, c + ws.R * s, which, normal);
+  });
 }
 
 // P^T y for a body-frame force y at a sample: (y, s x y, J_s^T y), J_s blended like s.
