@@ -1,5 +1,7 @@
 #include "core/symmetric_solver.h"
 
+#include <cmath>
+
 namespace pbm {
 namespace {
 
@@ -8,7 +10,8 @@ namespace {
 // vectorizes, in two row blocks so the upper triangle's zero 6 x 6 block is skipped (108 products
 // a column of the full 144). Eigen's dynamic product of the whole 12 x m block of a contact patch
 // (packing included) took 510 instructions a column, a plain loop over the triangle 815.
-void squared_norms_12(const MatX& L, const Eigen::Ref<const MatX>& G, Eigen::Ref<VecX> out) {
+void squared_norms_12(const Eigen::Matrix<Real, 12, 12>& L, const Eigen::Ref<const MatX>& G,
+                      Eigen::Ref<VecX> out) {
   using Block6 = Eigen::Matrix<Real, 6, 6>;
   using Rows6 = Eigen::Matrix<Real, 6, 12>;
   using Vec6 = Eigen::Matrix<Real, 6, 1>;
@@ -30,6 +33,38 @@ void squared_norms_12(const MatX& L, const Eigen::Ref<const MatX>& G, Eigen::Ref
 
 }  // namespace
 
+bool SymmetricSolver::factor_fixed(const MatX& A) {
+  MatFixed& L = L_fixed_;
+  L.setZero();
+  VecFixed inverse_pivot;
+  // Cholesky-Crout, column by column: L(i, j) = (A(i, j) - sum_k<j L(i, k) L(j, k)) / L(j, j).
+  for (int j = 0; j < kFixed; ++j) {
+    Real d = A(j, j);
+    for (int k = 0; k < j; ++k) d -= L(j, k) * L(j, k);
+    if (!(d > 0)) return false;
+    L(j, j) = std::sqrt(d);
+    inverse_pivot[j] = 1.0 / L(j, j);
+    for (int i = j + 1; i < kFixed; ++i) {
+      Real sum = A(i, j);
+      for (int k = 0; k < j; ++k) sum -= L(i, k) * L(j, k);
+      L(i, j) = sum * inverse_pivot[j];
+    }
+  }
+  // X = L^-1 by forward substitution on the columns of I: X(i, j) = -sum_{j<=k<i} L(i, k) X(k, j)
+  // / L(i, i) below the diagonal, 1 / L(j, j) on it.
+  MatFixed& X = L_inv_fixed_;
+  X.setZero();
+  for (int j = 0; j < kFixed; ++j) {
+    X(j, j) = inverse_pivot[j];
+    for (int i = j + 1; i < kFixed; ++i) {
+      Real sum = 0;
+      for (int k = j; k < i; ++k) sum += L(i, k) * X(k, j);
+      X(i, j) = -sum * inverse_pivot[i];
+    }
+  }
+  return true;
+}
+
 void SymmetricSolver::reserve(Eigen::Index n) {
   llt_ = Eigen::LLT<MatX>(n);
   eigen_.reserve(n);
@@ -40,17 +75,24 @@ void SymmetricSolver::reserve(Eigen::Index n) {
 }
 
 void SymmetricSolver::compute(const MatX& A) {
-  llt_.compute(A);
-  cholesky_ = llt_.info() == Eigen::Success;
-  if (cholesky_ && A.rows() > 0) {
-    const auto pivots = llt_.matrixLLT().diagonal();
+  // Comfortably positive definite: no pivot below the ratio (see kPivotRatio).
+  const auto comfortable = [](const auto& pivots) {
     const Real smallest = pivots.minCoeff(), largest = pivots.maxCoeff();
-    cholesky_ = smallest * smallest > kPivotRatio * largest * largest;
-  }
-  if (cholesky_) {
-    work_.setIdentity(A.rows(), A.cols());
-    llt_.matrixL().solveInPlace(work_);
-    return;
+    return smallest * smallest > kPivotRatio * largest * largest;
+  };
+  fixed_ = A.rows() == kFixed && A.cols() == kFixed;
+  if (fixed_) {
+    cholesky_ = factor_fixed(A) && comfortable(L_fixed_.diagonal());
+    if (cholesky_) return;
+  } else {
+    llt_.compute(A);
+    cholesky_ = llt_.info() == Eigen::Success &&
+                (A.rows() == 0 || comfortable(llt_.matrixLLT().diagonal()));
+    if (cholesky_) {
+      work_.setIdentity(A.rows(), A.cols());
+      llt_.matrixL().solveInPlace(work_);
+      return;
+    }
   }
   eigen_.compute(A);
   const VecX& lambda = eigen_.eigenvalues();
@@ -62,6 +104,11 @@ void SymmetricSolver::compute(const MatX& A) {
 }
 
 void SymmetricSolver::solve(const VecX& y, VecX& x) {
+  if (cholesky_ && fixed_) {
+    const VecFixed t = L_inv_fixed_ * y;  // x = L^-T L^-1 y
+    x.noalias() = L_inv_fixed_.transpose() * t;
+    return;
+  }
   if (cholesky_) {
     x = y;
     llt_.solveInPlace(x);
@@ -74,6 +121,11 @@ void SymmetricSolver::solve(const VecX& y, VecX& x) {
 }
 
 void SymmetricSolver::solve_in_place(Eigen::Ref<MatX> B) {
+  if (cholesky_ && fixed_) {
+    L_fixed_.triangularView<Eigen::Lower>().solveInPlace(B);
+    L_fixed_.transpose().triangularView<Eigen::Upper>().solveInPlace(B);
+    return;
+  }
   if (cholesky_) {
     llt_.matrixL().solveInPlace(B);
     llt_.matrixU().solveInPlace(B);
@@ -91,8 +143,8 @@ void SymmetricSolver::inverse_quadratic_forms(const Eigen::Ref<const MatX>& G, E
                                               MatX& scratch) {
   if (cholesky_) {
     // g^T (L L^T)^-1 g = |L^-1 g|^2 with the kept L^-1, column by column over its lower triangle.
-    if (G.rows() == 12) {
-      squared_norms_12(work_, G, out);
+    if (fixed_) {
+      squared_norms_12(L_inv_fixed_, G, out);
       return;
     }
   }
@@ -110,8 +162,12 @@ void SymmetricSolver::inverse_quadratic_forms(const Eigen::Ref<const MatX>& G, E
 }
 
 void SymmetricSolver::pseudo_inverse(MatX& out) {
+  if (cholesky_ && fixed_) {
+    out.noalias() = L_inv_fixed_.transpose() * L_inv_fixed_;  // A^-1 = L^-T L^-1
+    return;
+  }
   if (cholesky_) {
-    out.noalias() = work_.transpose() * work_;  // A^-1 = L^-T L^-1
+    out.noalias() = work_.transpose() * work_;
     return;
   }
   const MatX& V = eigen_.eigenvectors();

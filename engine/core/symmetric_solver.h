@@ -39,6 +39,19 @@ class SymmetricSolver {
   // as semi-definite: a pivot bounds A's smallest eigenvalue from above, and the eigen-
   // decomposition's cut-off is 1e-10 of the largest.
   static constexpr Real kPivotRatio = 1e-8;
+  // The superquadric's block (6 rigid + 6 shape rows) is factored at compile-time size by the
+  // loops of factor_fixed: Eigen's LLT works on run-time-sized blocks even in a fixed-size matrix,
+  // and with L^-1 by its triangular solves it took 12k instructions a factor, a twentieth of a
+  // 66-node ball's step.
+  static constexpr int kFixed = 12;
+  using MatFixed = Eigen::Matrix<Real, kFixed, kFixed>;
+  using VecFixed = Eigen::Matrix<Real, kFixed, 1>;
+  // L and L^-1 of A = L L^T, lower triangles (the upper ones zero); false where a pivot is not
+  // positive.
+  bool factor_fixed(const MatX& A);
+  bool fixed_ = false;  // A is 12 x 12: L in L_fixed_, L^-1 in L_inv_fixed_ (when cholesky_)
+  MatFixed L_fixed_;
+  MatFixed L_inv_fixed_;
   Eigen::LLT<MatX> llt_;
   SymmetricEigenSolver eigen_;
   VecX inverse_eigenvalues_;  // 1 / lambda on A's range, 0 on its null space
