@@ -1,0 +1,60 @@
+#include "figure/articulated_body.h"
+
+#include <Eigen/Cholesky>
+
+#include "figure/figure_kinematics.h"
+
+namespace pbm {
+
+void forward_dynamics(const FigureModel& figure, const Real* q, const Real* v, const Real* tau,
+                      std::span<const ForceVector> f_ext, const Vec3& gravity, FigureWorkspace& ws,
+                      Real* qdd) {
+  const int n = figure.size();
+  // Pass 1, outward: velocities, velocity products, and each segment's own inertia and bias
+  // force p = v x* I v - f_ext as its articulated ones to start from.
+  figure_kinematics(figure, q, v, ws);
+  for (int i = 0; i < n; ++i) {
+    ws.IA[i] = ws.inertia[i];
+    ws.f[i] = force_cross(ws.v[i], ws.inertia[i] * ws.v[i]);
+    if (!f_ext.empty()) ws.f[i] -= to_vec6(f_ext[i]);
+  }
+  // Pass 2, inward: each segment's articulated inertia and bias force, with its joint's freedom
+  // taken out, handed to its parent: I^a = I^A - U D^-1 U^T, p^a = p^A + I^a c + U D^-1 u.
+  for (int i = n - 1; i >= 0; --i) {
+    const SegmentModel& segment = figure.segments[i];
+    const MotionSubspace& S = ws.S[i];
+    const int dof = static_cast<int>(S.cols());
+    Mat6 Ia = ws.IA[i];
+    Vec6 pa = ws.f[i];
+    if (dof > 0) {
+      ws.U[i].noalias() = ws.IA[i] * S;
+      const JointMatrix D = S.transpose() * ws.U[i];
+      // D = S^T I^A S is symmetric positive definite for a segment with mass and inertia
+      // (finalize_figure_model); its inverse is at most 6 x 6.
+      ws.D_inv[i] = D.llt().solve(JointMatrix::Identity(dof, dof));
+      ws.u[i] = Eigen::Map<const VecX>(tau + segment.v_offset, dof) - S.transpose() * ws.f[i];
+      const MotionSubspace UD = ws.U[i] * ws.D_inv[i];
+      Ia.noalias() -= UD * ws.U[i].transpose();
+      pa.noalias() += UD * ws.u[i];
+    }
+    if (segment.parent < 0) continue;
+    pa.noalias() += Ia * ws.c[i];
+    const Mat6& X = ws.X_motion[i];
+    ws.IA[segment.parent].noalias() += X.transpose() * Ia * X;
+    ws.f[segment.parent].noalias() += X.transpose() * pa;
+  }
+  // Pass 3, outward: accelerations, qddot = D^-1 (u - U^T a'), a = a' + S qddot.
+  const Vec6 a0 = gravity_acceleration(gravity);
+  for (int i = 0; i < n; ++i) {
+    const SegmentModel& segment = figure.segments[i];
+    const Vec6& a_parent = segment.parent >= 0 ? ws.a[segment.parent] : a0;
+    ws.a[i] = ws.X_motion[i] * a_parent + ws.c[i];
+    const int dof = static_cast<int>(ws.S[i].cols());
+    if (dof == 0) continue;
+    Eigen::Map<VecX> qdd_i(qdd + segment.v_offset, dof);
+    qdd_i = ws.D_inv[i] * (ws.u[i] - ws.U[i].transpose() * ws.a[i]);
+    ws.a[i] += ws.S[i] * qdd_i;
+  }
+}
+
+}  // namespace pbm

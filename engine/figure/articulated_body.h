@@ -1,0 +1,19 @@
+// Forward dynamics of a figure by Featherstone's articulated-body method (sec. 15.2, the book's
+// "ABM" [83]; RBDA Table 7.1): qddot from q, qdot, the joint forces tau and the external forces,
+// in time linear in the DOF, without forming the joint-space mass matrix.
+#pragma once
+
+#include <span>
+
+#include "figure/figure_model.h"
+#include "figure/figure_workspace.h"
+
+namespace pbm {
+
+// q (n_q), v (n_v), tau (n_v); f_ext: one force per segment in its own coordinates, acting on
+// it (empty: none); gravity in the inertial frame. Writes qdd (n_v). ws sized for the figure.
+void forward_dynamics(const FigureModel& figure, const Real* q, const Real* v, const Real* tau,
+                      std::span<const ForceVector> f_ext, const Vec3& gravity, FigureWorkspace& ws,
+                      Real* qdd);
+
+}  // namespace pbm

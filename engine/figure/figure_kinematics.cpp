@@ -1,0 +1,45 @@
+#include "figure/figure_kinematics.h"
+
+namespace pbm {
+
+void size_figure_workspace(const FigureModel& figure, FigureWorkspace& ws) {
+  const std::size_t n = figure.segments.size();
+  ws.X_up.assign(n, SpatialTransform{});
+  ws.X_motion.assign(n, Mat6::Identity());
+  ws.S.assign(n, MotionSubspace());
+  ws.v.assign(n, Vec6::Zero());
+  ws.c.assign(n, Vec6::Zero());
+  ws.inertia.resize(n);
+  for (std::size_t i = 0; i < n; ++i) ws.inertia[i] = inertia_matrix(figure.segments[i].inertia);
+  ws.a.assign(n, Vec6::Zero());
+  ws.f.assign(n, Vec6::Zero());
+  ws.IA.assign(n, Mat6::Zero());
+  ws.U.assign(n, MotionSubspace());
+  ws.D_inv.assign(n, JointMatrix());
+  ws.u.assign(n, JointVector());
+}
+
+void figure_kinematics(const FigureModel& figure, const Real* q, const Real* v,
+                       FigureWorkspace& ws) {
+  for (int i = 0; i < figure.size(); ++i) {
+    const SegmentModel& segment = figure.segments[i];
+    const Real* q_i = q + segment.q_offset;
+    ws.X_up[i] = joint_transform(segment.joint, q_i) * segment.X_tree;
+    ws.X_motion[i] = motion_matrix(ws.X_up[i]);
+    joint_motion_subspace(segment.joint, q_i, ws.S[i]);
+    if (v == nullptr) {
+      ws.v[i].setZero();
+      ws.c[i].setZero();
+      continue;
+    }
+    const int n_v = joint_v_size(segment.joint.kind);
+    const Eigen::Map<const VecX> qd(v + segment.v_offset, n_v);
+    const Vec6 v_J = ws.S[i] * qd;
+    const Vec6 v_parent = segment.parent >= 0 ? ws.v[segment.parent] : Vec6::Zero();
+    ws.v[i] = ws.X_motion[i] * v_parent + v_J;
+    ws.c[i] =
+        to_vec6(joint_bias(segment.joint, q_i, v + segment.v_offset)) + motion_cross(ws.v[i], v_J);
+  }
+}
+
+}  // namespace pbm
