@@ -1,0 +1,74 @@
+// The impact stage of a figure's collision (sec. 15.3.1): at the instant two segments (or a
+// segment and a fixed surface) collide, velocities jump while positions stay. The book writes
+// momentum conservation per segment with the contact impulses and the joint impulses (15.1),
+// (15.6), the contact law along the normal (15.2), frictionless (15.3) or sticking (15.4), joint
+// impulses with no component along the joint axes (15.7) and the velocity recursion (15.8), and
+// solves the sparse system. In joint coordinates the joint impulses drop out ((15.7) is exactly
+// that they do no work on the joint's motion): H dqdot = J^T p, with the contact points' velocity
+// change J dqdot = J H^-1 J^T p. That dense system has 1 or 3 unknowns per contact instead of 12
+// per segment; each figure's H is factored once.
+//
+// Beyond the book: Coulomb's law |p_t| <= mu p_n on the impulses, and impulses that only push
+// (p_n >= 0); where the book's equalities would break either, projected Gauss-Seidel on the same
+// Delassus matrix from the equalities' clamped solution.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "figure/figure_model.h"
+#include "figure/figure_workspace.h"
+
+namespace pbm {
+
+// A figure and its state as the impact sees it: positions read, velocities changed in place.
+struct ImpactFigure {
+  const FigureModel* model = nullptr;
+  const VecX* q = nullptr;
+  VecX* v = nullptr;
+};
+
+struct ImpactContact {
+  int figure_a = 0, segment_a = 0;    // the first segment
+  int figure_b = -1, segment_b = -1;  // the second, or -1: a fixed surface
+  Vec3 point = Vec3::Zero();          // world [m]
+  Vec3 normal = Vec3::UnitZ();        // world, unit, from b toward a
+};
+
+enum class ImpactFriction {
+  frictionless,  // (15.3): no tangential impulse
+  sticking,      // (15.4): no tangential velocity after the impact
+  coulomb,       // sticking where |p_t| <= mu p_n holds, sliding on the cone where it does not
+};
+
+struct ImpactSettings {
+  Real restitution = 0;  // e of (15.2): v_n+ = -e v_n-
+  ImpactFriction friction = ImpactFriction::frictionless;
+  Real mu = 0.5;  // Coulomb's coefficient, for ImpactFriction::coulomb
+};
+
+struct ImpactResult {
+  std::vector<Vec3> impulses;  // world impulse on segment a at each contact [N s]
+  bool projected = false;      // the equalities' solution broke p_n >= 0 or the cone
+};
+
+// Scratch of resolve_impact, one FigureWorkspace per figure.
+struct ImpactWorkspace {
+  std::vector<FigureWorkspace> figures;
+  std::vector<MatX> H;       // joint-space inertia of each figure
+  std::vector<MatX> J;       // 3 m x n_v contact Jacobian of each figure
+  std::vector<MatX> HinvJt;  // H^-1 J^T
+  MatX W;                    // 3 m x 3 m Delassus matrix
+  VecX u;                    // relative contact velocities before, 3 m
+};
+
+// Changes the figures' velocities by the impact at the contacts.
+ImpactResult resolve_impact(std::span<const ImpactFigure> figures,
+                            std::span<const ImpactContact> contacts, const ImpactSettings& settings,
+                            ImpactWorkspace& ws);
+
+// World transform (inertial -> segment) of every segment from figure_kinematics' X_up.
+void segment_world_transforms(const FigureModel& figure, const FigureWorkspace& ws,
+                              std::vector<SpatialTransform>& world);
+
+}  // namespace pbm
