@@ -8,6 +8,7 @@
 
 #include "bench_constraints.h"
 #include "bench_drag.h"
+#include "bench_figures.h"
 #include "bench_render.h"
 #include "bullet_soft_ellipsoid.h"
 #include "core/error.h"
@@ -111,9 +112,11 @@ int run_bench(const BenchOptions& o) {
   if (o.what == "render") return run_bench_render(o.scene, std::max(5, o.steps / 2));
   if (o.what == "constraints") return run_bench_constraints(o.max_constraints);
   if (o.what == "drag") return run_bench_drag(o.scene, std::max(1, o.steps));
+  if (o.what == "figures") return run_bench_figures();
   if (o.what != "deform") {
     spdlog::error(
-        "unknown benchmark '{}' (known: deform, render, constraints, drag, tradeoff, realtime)",
+        "unknown benchmark '{}' (known: deform, render, constraints, drag, figures, tradeoff, "
+        "realtime)",
         o.what);
     return 2;
   }

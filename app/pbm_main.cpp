@@ -50,10 +50,12 @@ int main(int argc, char** argv) {
       "bench",
       "benchmarks: deform (ours vs Bullet btSoftBody), render (ours vs a bare draw), "
       "constraints (dense vs sparse constraint solve), drag (a mouse-drag move vs recompiling), "
+      "figures (articulated-body dynamics vs Bullet btMultiBody), "
       "tradeoff <scene> (error against cost over a sweep of the knobs: CSV and PNG), realtime "
       "[folder] (the real-time factor of every scene in it, default scenes)");
   bench_cmd
-      ->add_option("what", bench.what, "deform | render | constraints | drag | tradeoff | realtime")
+      ->add_option("what", bench.what,
+                   "deform | render | constraints | drag | figures | tradeoff | realtime")
       ->required();
   bench_cmd->add_option("--steps", bench.steps, "steps timed per size (drag: frames of moves)");
   bench_cmd->add_option("--scene", bench.scene,
