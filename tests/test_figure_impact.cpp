@@ -197,7 +197,7 @@ TEST(FigureImpact, JointImpulsesHaveNoComponentAlongTheJointAxes) {
       F[i] -= to_vec6(transform_force(world[i], p_world));
     }
     const int parent = figure.segments[i].parent;
-    if (parent >= 0) F[parent] += after.X_motion[i].transpose() * F[i];
+    if (parent >= 0) F[parent] += motion_matrix(after.X_up[i]).transpose() * F[i];
   }
   Real scale = 0, worst = 0;
   for (int i = 0; i < figure.size(); ++i) {

@@ -5,7 +5,6 @@
 #include "figure/figure_kinematics.h"
 
 namespace pbm {
-
 void forward_dynamics(const FigureModel& figure, const Real* q, const Real* v, const Real* tau,
                       std::span<const ForceVector> f_ext, const Vec3& gravity, FigureWorkspace& ws,
                       Real* qdd) {
@@ -26,7 +25,18 @@ void forward_dynamics(const FigureModel& figure, const Real* q, const Real* v, c
     const int dof = static_cast<int>(S.cols());
     Mat6 Ia = ws.IA[i];
     Vec6 pa = ws.f[i];
-    if (dof > 0) {
+    if (dof == 1) {
+      // A single axis s (revolute, prismatic): U = I^A s, D = s^T U a scalar.
+      const Vec6 s_i = S.col(0);
+      const Vec6 U = ws.IA[i] * s_i;
+      const Real D_inv = 1 / s_i.dot(U);
+      ws.U[i] = U;
+      ws.D_inv[i].setConstant(1, 1, D_inv);
+      const Real u = tau[segment.v_offset] - s_i.dot(ws.f[i]);
+      ws.u[i].setConstant(1, u);
+      Ia.noalias() -= (D_inv * U) * U.transpose();
+      pa += (D_inv * u) * U;
+    } else if (dof > 0) {
       ws.U[i].noalias() = ws.IA[i] * S;
       const JointMatrix D = S.transpose() * ws.U[i];
       // D = S^T I^A S is symmetric positive definite for a segment with mass and inertia
@@ -39,18 +49,24 @@ void forward_dynamics(const FigureModel& figure, const Real* q, const Real* v, c
     }
     if (segment.parent < 0) continue;
     pa.noalias() += Ia * ws.c[i];
-    const Mat6& X = ws.X_motion[i];
-    ws.IA[segment.parent].noalias() += X.transpose() * Ia * X;
-    ws.f[segment.parent].noalias() += X.transpose() * pa;
+    add_inertia_to_parent(ws.X_up[i], Ia, ws.IA[segment.parent]);
+    ws.f[segment.parent] += transform_to_parent(ws.X_up[i], pa);
   }
   // Pass 3, outward: accelerations, qddot = D^-1 (u - U^T a'), a = a' + S qddot.
   const Vec6 a0 = gravity_acceleration(gravity);
   for (int i = 0; i < n; ++i) {
     const SegmentModel& segment = figure.segments[i];
     const Vec6& a_parent = segment.parent >= 0 ? ws.a[segment.parent] : a0;
-    ws.a[i] = ws.X_motion[i] * a_parent + ws.c[i];
+    ws.a[i] = transform_to_child(ws.X_up[i], a_parent) + ws.c[i];
     const int dof = static_cast<int>(ws.S[i].cols());
     if (dof == 0) continue;
+    if (dof == 1) {
+      const Vec6 U = ws.U[i].col(0);
+      const Real qdd_i = ws.D_inv[i](0, 0) * (ws.u[i][0] - U.dot(ws.a[i]));
+      qdd[segment.v_offset] = qdd_i;
+      ws.a[i] += qdd_i * ws.S[i].col(0);
+      continue;
+    }
     Eigen::Map<VecX> qdd_i(qdd + segment.v_offset, dof);
     qdd_i = ws.D_inv[i] * (ws.u[i] - ws.U[i].transpose() * ws.a[i]);
     ws.a[i] += ws.S[i] * qdd_i;

@@ -17,6 +17,19 @@ inline Vec6 force_cross(const Vec6& v, const Vec6& f) {
   return to_vec6(cross(motion_from_vec6(v), force_from_vec6(f)));
 }
 
+// X m and X^T f for X = child_X_parent on packed vectors: a motion (velocity, acceleration) of
+// the parent in the child's coordinates, and a force on the child in the parent's.
+inline Vec6 transform_to_child(const SpatialTransform& X, const Vec6& m) {
+  return to_vec6(transform_motion(X, motion_from_vec6(m)));
+}
+inline Vec6 transform_to_parent(const SpatialTransform& X, const Vec6& f) {
+  return to_vec6(transform_force(inverse(X), force_from_vec6(f)));
+}
+
+// out += X^T I X: a child's (articulated or composite) inertia I added to its parent's, X =
+// child_X_parent.
+void add_inertia_to_parent(const SpatialTransform& X, const Mat6& I, Mat6& out);
+
 // q: n_q position coordinates; v: n_v velocities (nullptr: at rest, v and c zero).
 void figure_kinematics(const FigureModel& figure, const Real* q, const Real* v,
                        FigureWorkspace& ws);

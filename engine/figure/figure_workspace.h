@@ -14,7 +14,6 @@ namespace pbm {
 struct FigureWorkspace {
   // Forward kinematics (figure_kinematics).
   std::vector<SpatialTransform> X_up;  // child_X_parent = X_J X_tree (RBDA eq. 4.3)
-  std::vector<Mat6> X_motion;          // its 6 x 6 matrix on motions; transposed, parent_X*_child
   std::vector<MotionSubspace> S;       // motion subspace, child coordinates
   std::vector<Vec6> v;                 // segment velocity, segment coordinates
   std::vector<Vec6> c;                 // velocity-product acceleration c_J + v x v_J

@@ -15,7 +15,7 @@ void inverse_dynamics(const FigureModel& figure, const Real* q, const Real* v, c
     const SegmentModel& segment = figure.segments[i];
     const int dof = static_cast<int>(ws.S[i].cols());
     const Vec6& a_parent = segment.parent >= 0 ? ws.a[segment.parent] : a0;
-    ws.a[i] = ws.X_motion[i] * a_parent + ws.c[i];
+    ws.a[i] = transform_to_child(ws.X_up[i], a_parent) + ws.c[i];
     if (dof > 0) ws.a[i] += ws.S[i] * Eigen::Map<const VecX>(qdd + segment.v_offset, dof);
     ws.f[i] = ws.inertia[i] * ws.a[i] + force_cross(ws.v[i], ws.inertia[i] * ws.v[i]);
     if (!f_ext.empty()) ws.f[i] -= to_vec6(f_ext[i]);
@@ -25,7 +25,7 @@ void inverse_dynamics(const FigureModel& figure, const Real* q, const Real* v, c
     const SegmentModel& segment = figure.segments[i];
     const int dof = static_cast<int>(ws.S[i].cols());
     if (dof > 0) Eigen::Map<VecX>(tau + segment.v_offset, dof) = ws.S[i].transpose() * ws.f[i];
-    if (segment.parent >= 0) ws.f[segment.parent].noalias() += ws.X_motion[i].transpose() * ws.f[i];
+    if (segment.parent >= 0) ws.f[segment.parent] += transform_to_parent(ws.X_up[i], ws.f[i]);
   }
 }
 

@@ -13,8 +13,7 @@ void joint_space_inertia(const FigureModel& figure, const Real* q, FigureWorkspa
   for (int i = n - 1; i >= 0; --i) {
     const int parent = figure.segments[i].parent;
     if (parent >= 0) {
-      const Mat6& X = ws.X_motion[i];
-      ws.IA[parent].noalias() += X.transpose() * ws.IA[i] * X;
+      add_inertia_to_parent(ws.X_up[i], ws.IA[i], ws.IA[parent]);
     }
   }
   // H_ii = S_i^T I^c_i S_i, and H_ji = S_j^T (j_X*_i I^c_i S_i) for each ancestor j.
@@ -25,7 +24,7 @@ void joint_space_inertia(const FigureModel& figure, const Real* q, FigureWorkspa
     MotionSubspace F = ws.IA[i] * ws.S[i];
     H.block(segment.v_offset, segment.v_offset, dof_i, dof_i) = ws.S[i].transpose() * F;
     for (int j = i; figure.segments[j].parent >= 0;) {
-      F = ws.X_motion[j].transpose() * F;
+      for (int k = 0; k < F.cols(); ++k) F.col(k) = transform_to_parent(ws.X_up[j], F.col(k));
       j = figure.segments[j].parent;
       const int dof_j = static_cast<int>(ws.S[j].cols());
       if (dof_j == 0) continue;
