@@ -22,6 +22,7 @@ struct SegmentModel {
   JointModel joint;
   SpatialTransform X_tree;  // joint_X_parent: the joint's frame (a parent site) from the parent's
   SpatialInertia inertia;   // about the segment's frame; m > 0, I_c symmetric positive definite
+  Real damping = 0;         // joint damping: tau = -damping qdot [N m s/rad or N s/m]
   int q_offset = 0;         // first entry of the joint's q in the figure's q
   int v_offset = 0;         // first entry of the joint's v in the figure's v
 };

@@ -1,0 +1,184 @@
+#include "figure/figure_build.h"
+
+#include <cmath>
+#include <numbers>
+#include <unordered_map>
+
+#include "core/error.h"
+#include "core/quaternion.h"
+
+namespace pbm {
+namespace {
+
+constexpr Real kPi = std::numbers::pi_v<Real>;
+
+bool finite(const Vec3& v) {
+  return v.allFinite();
+}
+
+// A direction from the file: any nonzero finite length, normalized.
+Vec3 unit_axis(const Vec3& axis, const std::string& file, const std::string& path) {
+  const Real length = axis.norm();
+  if (!std::isfinite(length) || !(length > 1e-12)) {
+    throw Error(file, path, "must be a nonzero finite vector");
+  }
+  return axis / length;
+}
+
+Mat3 rotation_of(const Vec4& q, const std::string& file, const std::string& path) {
+  if (!q.allFinite() || !(q.norm() > 1e-12)) {
+    throw Error(file, path, "must be a nonzero finite quaternion (w, x, y, z)");
+  }
+  return rotation_from_quaternion(q);
+}
+
+}  // namespace
+
+Real shape_volume(const SegmentShapeDef& shape) {
+  const Real r = shape.size.x();
+  switch (shape.kind) {
+    case SegmentShapeKind::box:
+      return 8 * shape.size.prod();
+    case SegmentShapeKind::sphere:
+      return 4.0 / 3.0 * kPi * r * r * r;
+    case SegmentShapeKind::cylinder:
+      return kPi * r * r * 2 * shape.size.z();
+    case SegmentShapeKind::capsule:
+      return kPi * r * r * 2 * shape.size.z() + 4.0 / 3.0 * kPi * r * r * r;
+  }
+  return 0;
+}
+
+Mat3 shape_inertia(const SegmentShapeDef& shape, Real m) {
+  const Real r = shape.size.x(), r2 = r * r;
+  switch (shape.kind) {
+    case SegmentShapeKind::box:
+      return solid_box_inertia(m, shape.size).I_c;
+    case SegmentShapeKind::sphere:
+      return solid_sphere_inertia(m, r).I_c;
+    case SegmentShapeKind::cylinder:
+      return solid_cylinder_inertia(m, r, 2 * shape.size.z()).I_c;
+    case SegmentShapeKind::capsule: {
+      // The straight part and the two hemispheres share m by volume; each hemisphere has 2/5 m r^2
+      // about a diameter of its base, and its centre 3 r / 8 from the base.
+      const Real L = 2 * shape.size.z();
+      const Real v_cylinder = kPi * r2 * L, v_sphere = 4.0 / 3.0 * kPi * r2 * r;
+      const Real m_c = m * v_cylinder / (v_cylinder + v_sphere), m_s = m - m_c;
+      const Real across =
+          m_c * (3 * r2 + L * L) / 12 + m_s * (0.4 * r2 + L * L / 4 + 3 * L * r / 8);
+      return Vec3(across, across, m_c * r2 / 2 + m_s * 0.4 * r2).asDiagonal();
+    }
+  }
+  return Mat3::Zero();
+}
+
+CompiledFigure build_figure_model(const FigureDef& def, const std::string& file,
+                                  const std::string& path) {
+  CompiledFigure out;
+  FigureModel& figure = out.model;
+  figure.name = def.name;
+  const int n = static_cast<int>(def.segments.size());
+  if (n == 0) throw Error(file, path + ".segments", "a figure needs at least one segment");
+  std::unordered_map<std::string, int> index;
+  for (int i = 0; i < n; ++i) {
+    const std::string at = path + ".segments[" + std::to_string(i) + "]";
+    if (!index.emplace(def.segments[i].name, i).second) {
+      throw Error(file, at + ".name", "'" + def.segments[i].name + "' names an earlier segment");
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    const SegmentDef& d = def.segments[i];
+    const std::string at = path + ".segments[" + std::to_string(i) + "]";
+    SegmentModel s;
+    s.name = d.name;
+    if (!d.parent.empty()) {
+      const auto found = index.find(d.parent);
+      if (found == index.end()) {
+        throw Error(file, at + ".parent", "no segment is named '" + d.parent + "'");
+      }
+      // Follow the parents up: a chain that comes back here is a cycle; one that reaches a root
+      // only through later segments is a tree listed out of order.
+      int j = found->second;
+      for (int steps = 0; j >= 0 && steps <= n; ++steps) {
+        if (j == i)
+          throw Error(file, at + ".parent", "the parents form a cycle through '" + d.name + "'");
+        const std::string& up = def.segments[j].parent;
+        j = up.empty() ? -1 : (index.count(up) ? index.at(up) : -1);
+      }
+      if (found->second > i) {
+        throw Error(file, at + ".parent",
+                    "'" + d.parent + "' must come before its child in the list");
+      }
+      s.parent = found->second;
+    }
+    // The joint frame on the parent: X_tree = joint_X_parent = (R^T, position).
+    const JointDef& jd = d.joint;
+    if (!finite(jd.position)) throw Error(file, at + ".joint.position", "must be finite");
+    s.X_tree = SpatialTransform{
+        rotation_of(jd.orientation, file, at + ".joint.orientation").transpose(), jd.position};
+    s.joint.kind = jd.kind;
+    const bool has_axis = jd.kind == JointKind::revolute || jd.kind == JointKind::prismatic ||
+                          jd.kind == JointKind::universal;
+    if (has_axis) s.joint.axis = unit_axis(jd.axis, file, at + ".joint.axis");
+    if (jd.kind == JointKind::universal) {
+      s.joint.axis2 = unit_axis(jd.axis2, file, at + ".joint.axis2");
+    }
+    if (!(jd.damping >= 0) || !std::isfinite(jd.damping)) {
+      throw Error(file, at + ".joint.damping", "must be finite and >= 0");
+    }
+    s.damping = jd.damping;
+    // Mass and inertia from the geometry: the shape's inertia turned into the segment's axes.
+    const SegmentShapeDef& shape = d.shape;
+    if (!finite(shape.size) || !(shape.size.x() > 0) ||
+        (shape.kind == SegmentShapeKind::box && !(shape.size.minCoeff() > 0)) ||
+        ((shape.kind == SegmentShapeKind::cylinder || shape.kind == SegmentShapeKind::capsule) &&
+         !(shape.size.z() > 0))) {
+      throw Error(file, at + ".shape.size", "the shape's dimensions must be positive and finite");
+    }
+    if (!finite(shape.center)) throw Error(file, at + ".shape.center", "must be finite");
+    const Real mass = d.mass > 0 ? d.mass : d.density * shape_volume(shape);
+    if (!std::isfinite(d.mass) || d.mass < 0 || !(mass > 0) || !std::isfinite(mass)) {
+      throw Error(file, at + (d.mass != 0 ? ".mass" : ".density"),
+                  "the segment's mass must be positive and finite (mass, or density times the "
+                  "shape's volume)");
+    }
+    const Mat3 R = rotation_of(shape.orientation, file, at + ".shape.orientation");
+    s.inertia = SpatialInertia{mass, shape.center, R * shape_inertia(shape, mass) * R.transpose()};
+    figure.segments.push_back(s);
+  }
+  finalize_figure_model(figure, file, path + ".segments");
+  // Initial state: at rest unless q0 / v0 say otherwise, quaternions normalized.
+  out.q0.resize(figure.n_q);
+  out.v0.setZero(figure.n_v);
+  figure_neutral_q(figure, out.q0.data());
+  for (int i = 0; i < n; ++i) {
+    const JointDef& jd = def.segments[i].joint;
+    const SegmentModel& s = figure.segments[i];
+    const std::string at = path + ".segments[" + std::to_string(i) + "].joint";
+    const int n_q = joint_q_size(jd.kind), n_v = joint_v_size(jd.kind);
+    if (!jd.q0.empty()) {
+      if (static_cast<int>(jd.q0.size()) != n_q) {
+        throw Error(file, at + ".q0", "needs " + std::to_string(n_q) + " numbers for this joint");
+      }
+      for (int k = 0; k < n_q; ++k) out.q0[s.q_offset + k] = jd.q0[k];
+      if (!out.q0.segment(s.q_offset, n_q).allFinite())
+        throw Error(file, at + ".q0", "must be finite");
+      const bool quaternion = jd.kind == JointKind::spherical || jd.kind == JointKind::free;
+      if (quaternion && !(out.q0.segment<4>(s.q_offset + n_q - 4).norm() > 1e-12)) {
+        throw Error(file, at + ".q0", "the quaternion must be nonzero");
+      }
+    }
+    if (!jd.v0.empty()) {
+      if (static_cast<int>(jd.v0.size()) != n_v) {
+        throw Error(file, at + ".v0", "needs " + std::to_string(n_v) + " numbers for this joint");
+      }
+      for (int k = 0; k < n_v; ++k) out.v0[s.v_offset + k] = jd.v0[k];
+      if (!out.v0.segment(s.v_offset, n_v).allFinite())
+        throw Error(file, at + ".v0", "must be finite");
+    }
+  }
+  figure_normalize(figure, out.q0.data());
+  return out;
+}
+
+}  // namespace pbm

@@ -1,0 +1,67 @@
+// The scene's description of an articulated figure (sec. 15.1.1): plain data with defaults, as a
+// scene file states it. build_figure_model (figure/figure_build.h) checks it and compiles it into
+// the FigureModel the recursions run on.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/types.h"
+#include "figure/joint.h"
+
+namespace pbm {
+
+enum class SegmentShapeKind {
+  box,       // size: half extents along x, y, z
+  sphere,    // size.x: radius
+  cylinder,  // size.x: radius, size.z: half length, axis along z
+  capsule,   // size.x: radius, size.z: half length of the straight part, axis along z
+};
+
+// A segment's geometry, uniform density: its mass, centre and inertia follow from it (sec.
+// 15.1.1: "the center of mass and inertia tensor of each segment can be automatically computed
+// from the segment's geometry").
+struct SegmentShapeDef {
+  SegmentShapeKind kind = SegmentShapeKind::box;
+  Vec3 size = Vec3::Constant(0.1);      // [m], see SegmentShapeKind
+  Vec3 center = Vec3::Zero();           // the shape's centre in the segment's frame [m]
+  Vec4 orientation = Vec4(1, 0, 0, 0);  // the shape's axes in the segment's frame (w, x, y, z)
+};
+
+// The segment's parent joint: where it sits on the parent (a site of the parent), its axes, its
+// damping, and its initial position and velocity.
+struct JointDef {
+  JointKind kind = JointKind::revolute;
+  Vec3 axis = Vec3::UnitZ();            // revolute, prismatic, universal's first (joint frame)
+  Vec3 axis2 = Vec3::UnitY();           // universal's second
+  Vec3 position = Vec3::Zero();         // the joint frame's origin in the parent's frame [m]
+  Vec4 orientation = Vec4(1, 0, 0, 0);  // the joint frame's axes in the parent's (w, x, y, z)
+  Real damping = 0;                     // joint damping [N m s/rad or N s/m], tau = -damping qdot
+  std::vector<Real> q0;                 // initial q (empty: at rest; a quaternion as w, x, y, z)
+  std::vector<Real> v0;                 // initial v (empty: zero)
+};
+
+// An attachment frame on a segment (sec. 15.1.1), for joints of children, actuators and drawing.
+struct SiteDef {
+  std::string name;
+  Vec3 position = Vec3::Zero();
+  Vec4 orientation = Vec4(1, 0, 0, 0);
+};
+
+struct SegmentDef {
+  std::string name;
+  std::string parent;  // empty: the figure's root, joined to the inertial frame
+  JointDef joint;
+  SegmentShapeDef shape;
+  Real mass = 0;        // [kg]; 0: density times the shape's volume
+  Real density = 1000;  // [kg/m^3], when mass is 0
+  std::vector<SiteDef> sites;
+  Vec3 color = Vec3(0.8, 0.75, 0.6);
+};
+
+struct FigureDef {
+  std::string name;
+  std::vector<SegmentDef> segments;
+};
+
+}  // namespace pbm
