@@ -1,0 +1,31 @@
+// Stable proportional-derivative servos on a figure's single-axis joints (beyond the book; the
+// issue list of sec. 15.4): the PD torque taken at the end of the step the integrator is about
+// to take (v' = v + dt qddot, q' = q + dt v', the semi-implicit Euler of the figure),
+// tau = -Kp (q + dt qdot + dt^2 qddot - q_d) - Kd (qdot + dt qddot - qdot_d). The unknown qddot
+// moves into the mass matrix, (H + dt Kd + dt^2 Kp) qddot = tau_ext - C - Kp (q + dt qdot - q_d)
+// - Kd (qdot - qdot_d): backward Euler on the servo, stable at any gain, where an explicit PD
+// needs dt below about 2 / sqrt(Kp / m). (Tan, Liu and Turk 2011 take the spring at q + dt qdot
+// only, which is still unstable once Kd dt is far above the link's inertia.) H and C come from
+// the composite-rigid-body and Newton-Euler recursions.
+#pragma once
+
+#include "figure/figure_model.h"
+#include "figure/figure_workspace.h"
+
+namespace pbm {
+
+struct StablePdWorkspace {
+  MatX H;
+  VecX C, rhs, zero;
+};
+
+// Gains per velocity coordinate (n_v; nonzero only on revolute, prismatic and universal joints,
+// whose q and v entries correspond); targets q_d and qdot_d per velocity coordinate. tau_ext
+// (n_v) are the other joint forces. Writes the accelerations and the servo torques applied
+// (tau_pd, n_v). Throws std::invalid_argument for a gain on a quaternion joint.
+void stable_pd_accelerations(const FigureModel& figure, const VecX& q, const VecX& v,
+                             const VecX& tau_ext, const Vec3& gravity, const VecX& Kp,
+                             const VecX& Kd, const VecX& q_target, const VecX& v_target, Real dt,
+                             FigureWorkspace& ws, StablePdWorkspace& pd, VecX& qdd, VecX& tau_pd);
+
+}  // namespace pbm
