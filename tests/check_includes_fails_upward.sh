@@ -23,4 +23,4 @@ expect_failure() {  # name, file to append to, line
 expect_failure "an upward include" engine/core/types.h '#include "sim/model.h"'
 expect_failure "a sideways include" engine/collide/obstacle.h '#include "constrain/constraint_def.h"'
 expect_failure "an engine header in ui/" ui/camera.h '#include "core/types.h"'
-expect_failure "a folder without a layer" engine/figure/segment.h '#include "core/types.h"'
+expect_failure "a folder without a layer" engine/unlayered/part.h '#include "core/types.h"'

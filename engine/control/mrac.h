@@ -17,10 +17,11 @@ namespace pbm {
 struct MracSettings {
   Real settling_time = 0.3;  // t_s [s]: time to come within 10% of a step, no overshoot
   // Adaptation of (15.16), (15.17): integral (alpha) and proportional (beta). The book finds a
-  // wide range works; on a 0.5 m arm (tests/test_mrac.cpp) alpha 1-10 with beta 1 settle within
-  // 0.9-0.97 t_s at 1x and 5x payload, while beta 10 is too stiff for a 0.5 ms explicit step.
+  // wide range works; on a 0.5 m arm (tests/test_mrac.cpp) these settle a step within
+  // 0.93-0.96 t_s and follow a smooth trajectory within 0.4-0.7% of its range at 1x and 5x
+  // payload; beta 10 is too stiff for a 0.5 ms explicit step.
   Real alpha = 10.0;
-  Real beta = 1.0;
+  Real beta = 2.0;
   Real max_output = std::numeric_limits<Real>::infinity();  // |u| limit [N m or N]
 };
 

@@ -26,4 +26,10 @@ Real evaluate_keys(Interpolation interpolation, const std::vector<Keyframe>& key
 // interval that starts there (the one evaluate_keys uses).
 Real evaluate_keys_rate(Interpolation interpolation, const std::vector<Keyframe>& keys, Real t);
 
+// d^2/dt^2 of evaluate_keys at t: the smooth curve's, piecewise linear in t (it jumps at keys);
+// 0 for linear and step curves and outside the keys. Joint trajectories give a controller its
+// desired acceleration with it ((15.14)).
+Real evaluate_keys_acceleration(Interpolation interpolation, const std::vector<Keyframe>& keys,
+                                Real t);
+
 }  // namespace pbm
