@@ -38,25 +38,6 @@ std::vector<bench::MultibodyLink> links_of(Topology topology, int n) {
   return links;
 }
 
-// Our figure of the same links (as tests/test_figure_vs_bullet.cpp): a segment's frame at its
-// pivot, turned as the link's frame, its centre at pivot_to_com.
-FigureModel figure_of(const std::vector<bench::MultibodyLink>& links) {
-  FigureModel figure;
-  for (const bench::MultibodyLink& l : links) {
-    SegmentModel s;
-    s.parent = l.parent;
-    s.joint.kind = JointKind::revolute;
-    s.joint.axis = l.axis;
-    const Vec3 parent_com =
-        l.parent >= 0 ? links[static_cast<std::size_t>(l.parent)].pivot_to_com : Vec3::Zero();
-    s.X_tree = SpatialTransform{l.rot_parent_to_this, parent_com + l.parent_com_to_pivot};
-    s.inertia = SpatialInertia{l.mass, l.pivot_to_com, l.principal.asDiagonal().toDenseMatrix()};
-    figure.segments.push_back(s);
-  }
-  finalize_figure_model(figure);
-  return figure;
-}
-
 struct Timing {
   double ours_aba = 1e300, ours_step = 1e300, bullet_aba = 1e300, bullet_step = 1e300;
 };
@@ -71,7 +52,7 @@ void time_fastest(int calls, double& fastest, F&& f) {
 
 Timing race(Topology topology, int n) {
   const std::vector<bench::MultibodyLink> links = links_of(topology, n);
-  const FigureModel figure = figure_of(links);
+  const FigureModel figure = bench::figure_of_links(links);
   FigureWorkspace ws;
   size_figure_workspace(figure, ws);
   bench::BulletMultibodyTreePtr peer = bench::make_bullet_multibody_tree(links);

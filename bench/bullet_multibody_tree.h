@@ -1,25 +1,13 @@
 // Side-by-side peer for `pbm bench figures`: the same revolute tree as Bullet's btMultiBody (its
-// Featherstone articulated-body method), built from a plain description both sides read.
+// Featherstone articulated-body method), built from the links both sides read (multibody_link.h).
 #pragma once
 
 #include <memory>
 #include <vector>
 
-#include "core/types.h"
+#include "multibody_link.h"
 
 namespace pbm::bench {
-
-// One link as btMultiBody describes it: pivot offsets, its rotation at q = 0 (parent coordinates
-// to its own), a revolute axis in its own frame, principal inertia at its centre.
-struct MultibodyLink {
-  int parent = -1;  // -1: the fixed base
-  Real mass = 1;
-  Vec3 principal = Vec3::Ones();            // [kg m^2], link axes
-  Vec3 parent_com_to_pivot = Vec3::Zero();  // parent frame, from the parent's centre [m]
-  Vec3 pivot_to_com = Vec3::Zero();         // own frame [m]
-  Mat3 rot_parent_to_this = Mat3::Identity();
-  Vec3 axis = Vec3::UnitZ();
-};
 
 struct BulletMultibodyTree;
 // Releases it (the type is complete only in its file, which keeps Bullet's headers there).

@@ -15,6 +15,7 @@
 #include "figure/figure_kinematics.h"
 #include "figure/inverse_dynamics.h"
 #include "figure/joint_space_inertia.h"
+#include "figure_rk4.h"
 
 namespace pbm {
 namespace {
@@ -243,15 +244,8 @@ TEST(ArticulatedBody, UndampedTreeConservesEnergyUnderGravity) {
   const Real e0 = total_energy(figure, q, v, ws);
   const Real h = 1e-3;
   Real worst = 0;
-  VecX k1q, k1v, k2q, k2v, k3q, k3v, k4q, k4v;
   for (int step = 0; step < 1000; ++step) {
-    rates(q, v, k1q, k1v);
-    rates(q + 0.5 * h * k1q, v + 0.5 * h * k1v, k2q, k2v);
-    rates(q + 0.5 * h * k2q, v + 0.5 * h * k2v, k3q, k3v);
-    rates(q + h * k3q, v + h * k3v, k4q, k4v);
-    q += h / 6 * (k1q + 2 * k2q + 2 * k3q + k4q);
-    v += h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
-    figure_normalize(figure, q.data());
+    test::figure_rk4_step(figure, q, v, h, rates);
     worst = std::max(worst, std::abs(total_energy(figure, q, v, ws) - e0));
   }
   std::printf("energy %.6f J, worst drift over 1 s %.2e relative\n", e0, worst / std::abs(e0));

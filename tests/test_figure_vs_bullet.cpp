@@ -15,6 +15,8 @@
 
 #include "figure/articulated_body.h"
 #include "figure/figure_model.h"
+#include "figure_rk4.h"
+#include "multibody_link.h"
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wshadow"
@@ -36,23 +38,15 @@ btVector3 bt(const Vec3& v) {
   return btVector3(v.x(), v.y(), v.z());
 }
 
-// One link as Bullet describes it: pivot offsets, the rotation at q = 0, principal inertia.
-struct Link {
-  bool spherical = false;
-  Real mass = 1;
-  Vec3 principal = Vec3::Ones();            // diagonal inertia about the centre, link axes [kg m^2]
-  Vec3 parent_com_to_pivot = Vec3::Zero();  // in the parent's frame (from its centre of mass)
-  Vec3 pivot_to_com = Vec3::Zero();         // in this link's frame
-  Mat3 rot_parent_to_this = Mat3::Identity();
-  Vec3 axis = Vec3::UnitZ();  // revolute axis, this link's frame
-};
+using bench::MultibodyLink;
 
-std::vector<Link> random_chain(std::mt19937& rng) {
+std::vector<MultibodyLink> random_chain(std::mt19937& rng) {
   std::uniform_real_distribution<Real> u(-1, 1), positive(0.5, 2.0);
   std::normal_distribution<Real> normal;
-  std::vector<Link> links(kLinks);
+  std::vector<MultibodyLink> links(kLinks);
   for (int i = 0; i < kLinks; ++i) {
-    Link& l = links[i];
+    MultibodyLink& l = links[i];
+    l.parent = i - 1;
     l.spherical = i % 2 == 1;
     l.mass = positive(rng);
     l.principal = 0.05 * Vec3(positive(rng), positive(rng), positive(rng)) + Vec3::Constant(0.05);
@@ -67,26 +61,6 @@ std::vector<Link> random_chain(std::mt19937& rng) {
   return links;
 }
 
-// Our figure of the same chain: a segment's frame at its pivot, turned as Bullet's link frame,
-// its centre of mass at pivot_to_com; the joint's frame on the parent at the parent's centre
-// (its own pivot_to_com; the base's centre is the origin) plus parent_com_to_pivot.
-FigureModel our_chain(const std::vector<Link>& links) {
-  FigureModel figure;
-  for (int i = 0; i < kLinks; ++i) {
-    const Link& l = links[i];
-    SegmentModel s;
-    s.parent = i - 1;
-    s.joint.kind = l.spherical ? JointKind::spherical : JointKind::revolute;
-    s.joint.axis = l.axis;
-    const Vec3 parent_com = i > 0 ? links[i - 1].pivot_to_com : Vec3::Zero();
-    s.X_tree = SpatialTransform{l.rot_parent_to_this, parent_com + l.parent_com_to_pivot};
-    s.inertia = SpatialInertia{l.mass, l.pivot_to_com, l.principal.asDiagonal().toDenseMatrix()};
-    figure.segments.push_back(s);
-  }
-  finalize_figure_model(figure);
-  return figure;
-}
-
 struct BulletChain {
   std::unique_ptr<btMultiBody> body;
   std::vector<Real> mass;
@@ -95,11 +69,11 @@ struct BulletChain {
   btAlignedObjectArray<btMatrix3x3> scratch_m;
 };
 
-BulletChain bullet_chain(const std::vector<Link>& links) {
+BulletChain bullet_chain(const std::vector<MultibodyLink>& links) {
   BulletChain chain;
   chain.body = std::make_unique<btMultiBody>(kLinks, 1.0, btVector3(1, 1, 1), true, false);
   for (int i = 0; i < kLinks; ++i) {
-    const Link& l = links[i];
+    const MultibodyLink& l = links[i];
     const Eigen::Quaternion<Real> r(l.rot_parent_to_this);
     const btQuaternion rot(r.x(), r.y(), r.z(), r.w());
     if (l.spherical) {
@@ -162,8 +136,8 @@ TEST(FigureVsBullet, AccelerationsAgreeAtRandomStates) {
   std::mt19937 rng(5);
   Real worst = 0;
   for (int trial = 0; trial < 10; ++trial) {
-    const std::vector<Link> links = random_chain(rng);
-    const FigureModel figure = our_chain(links);
+    const std::vector<MultibodyLink> links = random_chain(rng);
+    const FigureModel figure = bench::figure_of_links(links);
     FigureWorkspace ws;
     size_figure_workspace(figure, ws);
     BulletChain chain = bullet_chain(links);
@@ -190,8 +164,8 @@ Real joint_angle_difference(const SegmentModel& s, const VecX& a, const VecX& b)
 
 TEST(FigureVsBullet, ChainSwingsTheSameFor2Seconds) {
   std::mt19937 rng(9);
-  const std::vector<Link> links = random_chain(rng);
-  const FigureModel figure = our_chain(links);
+  const std::vector<MultibodyLink> links = random_chain(rng);
+  const FigureModel figure = bench::figure_of_links(links);
   FigureWorkspace ws;
   size_figure_workspace(figure, ws);
   BulletChain chain = bullet_chain(links);
@@ -213,16 +187,7 @@ TEST(FigureVsBullet, ChainSwingsTheSameFor2Seconds) {
       figure_q_dot(figure, qs.data(), vs.data(), q_dot.data());
       v_dot = accelerations(qs, vs);
     };
-    VecX k1q, k1v, k2q, k2v, k3q, k3v, k4q, k4v;
-    for (int step = 0; step < 2000; ++step) {
-      rates(q, v, k1q, k1v);
-      rates(q + 0.5 * h * k1q, v + 0.5 * h * k1v, k2q, k2v);
-      rates(q + 0.5 * h * k2q, v + 0.5 * h * k2v, k3q, k3v);
-      rates(q + h * k3q, v + h * k3v, k4q, k4v);
-      q += h / 6 * (k1q + 2 * k2q + 2 * k3q + k4q);
-      v += h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
-      figure_normalize(figure, q.data());
-    }
+    for (int step = 0; step < 2000; ++step) test::figure_rk4_step(figure, q, v, h, rates);
     return q;
   };
   const VecX ours =
