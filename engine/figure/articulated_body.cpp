@@ -5,6 +5,7 @@
 #include "figure/figure_kinematics.h"
 
 namespace pbm {
+
 void forward_dynamics(const FigureModel& figure, const Real* q, const Real* v, const Real* tau,
                       std::span<const ForceVector> f_ext, const Vec3& gravity, FigureWorkspace& ws,
                       Real* qdd) {
