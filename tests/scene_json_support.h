@@ -81,6 +81,29 @@ inline json full_scene() {
       {"name": "pivot", "kind": "hinge", "a": {"body": 0, "point": [0, 0, 0]},
        "b": {"body": 1, "point": [1, 0, 0]}, "axis": [0, 2, 0], "length": 0.5, "stiffness": 40,
        "rest_angle": 0.1, "damping": 0.5}
+    ],
+    "figures": [
+      {"name": "arm", "segments": [
+        {"name": "base", "joint": {"kind": "free", "position": [0, 0, 1],
+                                   "q0": [0, 0, 1, 2, 0, 0, 0], "v0": [0, 0, 1, 0.5, 0, 0]},
+         "shape": {"kind": "box", "size": [0.2, 0.1, 0.05]}, "mass": 2},
+        {"name": "upper", "parent": "base",
+         "joint": {"kind": "revolute", "axis": [0, 2, 0], "position": [0, 0, 0.05],
+                   "damping": 0.1, "q0": [0.3], "v0": [1]},
+         "shape": {"kind": "capsule", "size": [0.04, 0.04, 0.15], "center": [0, 0, 0.2]},
+         "density": 900, "color": [0.2, 0.4, 0.6],
+         "sites": [{"name": "elbow", "position": [0, 0, 0.4]},
+                   {"position": [0, 0.04, 0.2], "orientation": [0, 1, 0, 0]}]},
+        {"parent": "upper", "joint": {"kind": "spherical", "position": [0, 0, 0.4],
+                                      "q0": [2, 0, 0, 0]},
+         "shape": {"kind": "sphere", "size": [0.05, 0.05, 0.05]}},
+        {"parent": "upper", "joint": {"kind": "universal", "axis": [1, 0, 0],
+                                      "axis2": [0, 0, 3], "q0": [0.1, 0.2]},
+         "shape": {"kind": "cylinder", "size": [0.03, 0.03, 0.1], "orientation": [1, 1, 0, 0]}},
+        {"parent": "base", "joint": {"kind": "prismatic", "axis": [1, 0, 0],
+                                     "orientation": [0, 0, 0, 1]}},
+        {"parent": "base", "joint": {"kind": "fixed", "position": [0.2, 0, 0]}}
+      ]}
     ]
   })");
 }
@@ -211,6 +234,38 @@ inline void expect_same_scene(const Scene& a, const Scene& b) {
     for (std::size_t j = 0; j < a.tracks[i].keys.size(); ++j) {
       EXPECT_EQ(a.tracks[i].keys[j].time, b.tracks[i].keys[j].time);
       EXPECT_EQ(a.tracks[i].keys[j].value, b.tracks[i].keys[j].value);
+    }
+  }
+  ASSERT_EQ(a.figures.size(), b.figures.size());
+  for (std::size_t f = 0; f < a.figures.size(); ++f) {
+    EXPECT_EQ(a.figures[f].name, b.figures[f].name);
+    ASSERT_EQ(a.figures[f].segments.size(), b.figures[f].segments.size());
+    for (std::size_t i = 0; i < a.figures[f].segments.size(); ++i) {
+      const SegmentDef& x = a.figures[f].segments[i];
+      const SegmentDef& y = b.figures[f].segments[i];
+      EXPECT_EQ(x.name, y.name);
+      EXPECT_EQ(x.parent, y.parent);
+      EXPECT_EQ(x.joint.kind, y.joint.kind);
+      EXPECT_EQ(x.joint.axis, y.joint.axis);
+      EXPECT_EQ(x.joint.axis2, y.joint.axis2);
+      EXPECT_EQ(x.joint.position, y.joint.position);
+      EXPECT_EQ(x.joint.orientation, y.joint.orientation);
+      EXPECT_EQ(x.joint.damping, y.joint.damping);
+      EXPECT_EQ(x.joint.q0, y.joint.q0);
+      EXPECT_EQ(x.joint.v0, y.joint.v0);
+      EXPECT_EQ(x.shape.kind, y.shape.kind);
+      EXPECT_EQ(x.shape.size, y.shape.size);
+      EXPECT_EQ(x.shape.center, y.shape.center);
+      EXPECT_EQ(x.shape.orientation, y.shape.orientation);
+      EXPECT_EQ(x.mass, y.mass);
+      EXPECT_EQ(x.density, y.density);
+      EXPECT_EQ(x.color, y.color);
+      ASSERT_EQ(x.sites.size(), y.sites.size());
+      for (std::size_t k = 0; k < x.sites.size(); ++k) {
+        EXPECT_EQ(x.sites[k].name, y.sites[k].name);
+        EXPECT_EQ(x.sites[k].position, y.sites[k].position);
+        EXPECT_EQ(x.sites[k].orientation, y.sites[k].orientation);
+      }
     }
   }
 }

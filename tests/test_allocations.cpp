@@ -120,5 +120,10 @@ TEST(Allocations, AssembledSnowmanStepsWithoutAllocating) {
   EXPECT_EQ(allocations_in_frames("snowman", 60, 100), 0);
 }
 
+// A figure's step: the articulated-body method on the workspace sized once (sec. 15.2).
+TEST(Allocations, PendulumChainStepsWithoutAllocating) {
+  EXPECT_EQ(allocations_in_frames("pendulum-chain", 2, 30), 0);
+}
+
 }  // namespace
 }  // namespace pbm

@@ -109,6 +109,12 @@ std::string compare(const json& root, const json& property, const FieldFormat& f
       return type_is("string") && p.value("pattern", "") == track_target_pattern()
                  ? ""
                  : "pattern differs from track_target_pattern(): " + track_target_pattern();
+    case ValueType::numbers:
+      return type_is("array") && !p.contains("minItems") &&
+                     p.value("maxItems", 0.0) == format.limit &&
+                     resolved(root, p["items"]).value("type", "") == "number"
+                 ? ""
+                 : "numbers " + p.dump();
     case ValueType::keys:
       return type_is("array") && p.value("minItems", 0) == 1 &&
                      p.value("maxItems", 0.0) == format.limit
@@ -175,7 +181,7 @@ TEST(SceneFormat, EverySectionIsReachedFromTheScene) {
     if (field.format.type == ValueType::list) lists.emplace_back(field.format.key);
   }
   EXPECT_EQ(lists, (std::vector<std::string>{"bodies", "obstacles", "force_fields", "springs",
-                                             "tracks", "constraints"}));
+                                             "tracks", "constraints", "figures"}));
 }
 
 TEST(SceneFormat, NewItemsAreValid) {
@@ -200,7 +206,8 @@ TEST(SceneFormat, DefaultsAreWhatTheParserGives) {
           "springs": [{"node": 0}], "tracks": [{"target": "gravity[0]", "keys": [[0, 0]]}],
           "obstacles": [{}, {"kind": "box"}, {"kind": "mesh", "file": "a.obj"}],
           "constraints": [{"kind": "hinge", "a": {"body": 0, "point": [0, 0, 0]},
-                           "b": {"world": [0, 0, 0]}}]})");
+                           "b": {"world": [0, 0, 0]}}],
+          "figures": [{"segments": [{"sites": [{}]}]}]})");
   const json written = json::parse(scene_to_json(parse_scene(given.dump(), kFile)));
   const std::vector<SectionDescription> sections = describe_scene_format();
   const std::vector<std::pair<std::string, json::json_pointer>> items = {
@@ -217,7 +224,12 @@ TEST(SceneFormat, DefaultsAreWhatTheParserGives) {
       {"obstacle", json::json_pointer("/obstacles/0")},
       {"obstacle", json::json_pointer("/obstacles/1")},
       {"obstacle", json::json_pointer("/obstacles/2")},
-      {"constraint", json::json_pointer("/constraints/0")}};
+      {"constraint", json::json_pointer("/constraints/0")},
+      {"figure", json::json_pointer("/figures/0")},
+      {"segment", json::json_pointer("/figures/0/segments/0")},
+      {"joint", json::json_pointer("/figures/0/segments/0/joint")},
+      {"segment_shape", json::json_pointer("/figures/0/segments/0/shape")},
+      {"site", json::json_pointer("/figures/0/segments/0/sites/0")}};
   for (const auto& [name, pointer] : items) {
     const json& object = written[pointer];
     const json& input = given.contains(pointer) ? given[pointer] : json::object();
@@ -255,6 +267,27 @@ TEST(SceneFormat, SchemaForbidsTheKeysOfOtherKinds) {
       }
     }
   }
+  // The full scene's figure has a joint of each kind: likewise for the joints' keys.
+  const SectionDescription& joint = *find_section(sections, "joint");
+  const json& segments = written["figures"][0]["segments"];
+  int checked = 0;
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    int kind = 0;
+    while (joint.kind_names[static_cast<std::size_t>(kind)] != segments[i]["joint"]["kind"]) ++kind;
+    for (const FieldDescription& field : joint.fields) {
+      const std::string key(field.format.key);
+      if ((field.format.kinds >> kind) & 1u) continue;
+      for (const json& other : segments) {
+        if (!other["joint"].contains(key)) continue;
+        json wrong = written;
+        wrong["figures"][0]["segments"][i]["joint"][key] = other["joint"][key];
+        EXPECT_NE(validate(schema, schema, wrong, ""), "") << segments[i].dump() << " + " << key;
+        ++checked;
+        break;
+      }
+    }
+  }
+  EXPECT_EQ(checked, 8);  // axis and axis2 on spherical, fixed, free; axis2 on the two 1-DOF
 }
 
 TEST(SceneFormat, SchemaAcceptsWhatTheParserWritesAndRejectsWhatItRejects) {

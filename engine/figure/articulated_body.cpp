@@ -43,7 +43,10 @@ void forward_dynamics(const FigureModel& figure, const Real* q, const Real* v, c
       // D = S^T I^A S is symmetric positive definite for a segment with mass and inertia
       // (finalize_figure_model); its inverse is at most 6 x 6.
       ws.D_inv[i] = D.llt().solve(JointMatrix::Identity(dof, dof));
-      ws.u[i] = Eigen::Map<const VecX>(tau + segment.v_offset, dof) - S.transpose() * ws.f[i];
+      // tau - S^T p^A in two steps: the one-expression form makes a heap temporary of the Map's
+      // dynamic type (tests/test_allocations.cpp).
+      ws.u[i].noalias() = S.transpose() * ws.f[i];
+      ws.u[i] = Eigen::Map<const VecX>(tau + segment.v_offset, dof) - ws.u[i];
       const MotionSubspace UD = ws.U[i] * ws.D_inv[i];
       Ia.noalias() -= UD * ws.U[i].transpose();
       pa.noalias() += UD * ws.u[i];

@@ -32,6 +32,8 @@ struct FigureModel {
   std::vector<SegmentModel> segments;
   int n_q = 0;  // position coordinates (a quaternion counts 4)
   int n_v = 0;  // velocity coordinates, the figure's DOF
+  // Where the figure's q and v sit in a World's State::q and State::v (set by sim/model.cpp).
+  int state_q_offset = 0, state_v_offset = 0;
 
   int size() const { return static_cast<int>(segments.size()); }
 };

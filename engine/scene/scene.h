@@ -1,6 +1,7 @@
 // Scene: the parsed, validated content of a scene file (scenes/README.md documents the format).
 // The aggregate of every subsystem's definitions (each subsystem owns its Def structs, data below
-// the algorithms: deform/body_def.h, collide/obstacle_def.h, constrain/constraint_def.h) and the
+// the algorithms: deform/body_def.h, collide/obstacle_def.h, constrain/constraint_def.h,
+// figure/figure_def.h) and the
 // scene-wide ones below. Plain definitions with defaults. sim/model.h compiles a Scene into a
 // Model.
 #pragma once
@@ -14,6 +15,7 @@
 #include "core/keyframes.h"
 #include "core/types.h"
 #include "deform/body_def.h"
+#include "figure/figure_def.h"
 #include "integrate/integrators.h"
 
 namespace pbm {
@@ -81,6 +83,7 @@ struct Scene {
   std::vector<SpringDef> springs;
   std::vector<TrackDef> tracks;
   std::vector<ConstraintDef> constraints;
+  std::vector<FigureDef> figures;  // articulated figures (ch. 15)
   std::optional<CameraDef> camera;
 };
 

@@ -44,6 +44,17 @@ inline constexpr NameTable<ConstraintKind, 2> kConstraintKindNames{
     {{"point", ConstraintKind::point}, {"hinge", ConstraintKind::hinge}}};
 inline constexpr NameTable<ConstraintSolverKind, 2> kConstraintSolverKindNames{
     {{"dense", ConstraintSolverKind::dense}, {"sparse", ConstraintSolverKind::sparse}}};
+inline constexpr NameTable<JointKind, 6> kJointKindNames{{{"revolute", JointKind::revolute},
+                                                          {"prismatic", JointKind::prismatic},
+                                                          {"spherical", JointKind::spherical},
+                                                          {"universal", JointKind::universal},
+                                                          {"fixed", JointKind::fixed},
+                                                          {"free", JointKind::free}}};
+inline constexpr NameTable<SegmentShapeKind, 4> kSegmentShapeKindNames{
+    {{"box", SegmentShapeKind::box},
+     {"sphere", SegmentShapeKind::sphere},
+     {"cylinder", SegmentShapeKind::cylinder},
+     {"capsule", SegmentShapeKind::capsule}}};
 
 // The scene file's name of a kind ("" if the table lacks it): what messages, CSV columns and
 // labels print, so they use the words a scene file does.

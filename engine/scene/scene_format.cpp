@@ -6,13 +6,15 @@
 namespace pbm {
 
 std::vector<SectionDescription> describe_scene_format() {
-  return {describe_section(kSceneSection),      describe_section(kSolverSection),
-          describe_section(kCameraSection),     describe_section(kBodySection),
-          describe_section(kShapeSection),      describe_section(kTessellationSection),
-          describe_section(kMaterialSection),   describe_section(kObstacleSection),
-          describe_section(kForceFieldSection), describe_section(kSpringSection),
-          describe_section(kConstraintSection), describe_section(kConstraintEndSection),
-          describe_section(kTrackSection)};
+  return {describe_section(kSceneSection),        describe_section(kSolverSection),
+          describe_section(kCameraSection),       describe_section(kBodySection),
+          describe_section(kShapeSection),        describe_section(kTessellationSection),
+          describe_section(kMaterialSection),     describe_section(kObstacleSection),
+          describe_section(kForceFieldSection),   describe_section(kSpringSection),
+          describe_section(kConstraintSection),   describe_section(kConstraintEndSection),
+          describe_section(kTrackSection),        describe_section(kFigureSection),
+          describe_section(kSegmentSection),      describe_section(kJointSection),
+          describe_section(kSegmentShapeSection), describe_section(kSiteSection)};
 }
 
 const SectionDescription* find_section(const std::vector<SectionDescription>& sections,

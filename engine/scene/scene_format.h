@@ -40,6 +40,7 @@ enum class ValueType {
   material_point,   // (u, v) [rad], u in [-pi/2, pi/2], v in [-pi, pi]
   track_target,     // the scene value a track drives (scene/track_targets.h)
   keys,             // [time, value] pairs, strictly increasing in time
+  numbers,          // an array of at most FieldFormat::limit numbers, its length free (a q0)
 };
 
 inline constexpr Real kUnbounded = std::numeric_limits<Real>::infinity();

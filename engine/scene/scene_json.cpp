@@ -24,6 +24,7 @@ constexpr Real kMaxForceFields = 256;
 constexpr Real kMaxSprings = 4096;
 constexpr Real kMaxTracks = 4096;
 constexpr Real kMaxConstraints = 1024;
+constexpr Real kMaxFigures = 256;
 
 // Bodies come before every list that refers to them, tracks after what they drive.
 constexpr auto kSceneFields = std::to_array<Field<Scene>>({
@@ -39,9 +40,7 @@ constexpr auto kSceneFields = std::to_array<Field<Scene>>({
          .default_note = "automatic framing",
          .description = "Renderer camera; scenes without one are framed automatically."}),
     list<&Scene::bodies, kBodySection>({.key = "bodies",
-                                        .range = {.lo = 1},
                                         .limit = kMaxBodies,
-                                        .required = true,
                                         .section = "body",
                                         .description = "Deformable bodies."}),
     list<&Scene::obstacles, kObstacleSection>(
@@ -68,7 +67,21 @@ constexpr auto kSceneFields = std::to_array<Field<Scene>>({
          .limit = kMaxConstraints,
          .section = "constraint",
          .description = "Point-to-point constraints and hinges between bodies (ch. 7)."}),
+    list<&Scene::figures, kFigureSection>(
+        {.key = "figures",
+         .limit = kMaxFigures,
+         .section = "figure",
+         .description = "Articulated figures: trees of rigid segments (ch. 15)."}),
 });
+
+// A scene simulates something: a deformable body or an articulated figure.
+void check_scene(const JsonNode& node, Scene& scene, const ReadContext&) {
+  if (scene.bodies.empty() && scene.figures.empty()) {
+    const std::optional<JsonNode> bodies = find_child(node, "bodies");
+    if (bodies) fail(*bodies, "needs at least one body (or a figure in 'figures')");
+    fail(JsonNode{node.value, "bodies", node.file}, "is required (or 'figures')");
+  }
+}
 
 constexpr JsonLimits kSceneJsonLimits{.max_bytes = kMaxSceneFileBytes,
                                       .max_depth = kMaxNestingDepth,
@@ -77,7 +90,8 @@ constexpr JsonLimits kSceneJsonLimits{.max_bytes = kMaxSceneFileBytes,
 
 }  // namespace
 
-constexpr Section<Scene> kSceneSection{.name = "", .noun = "scene", .fields = kSceneFields};
+constexpr Section<Scene> kSceneSection{
+    .name = "", .noun = "scene", .fields = kSceneFields, .check = check_scene};
 
 Scene parse_scene(const std::string& json_text, const std::string& file_for_messages) {
   const nlohmann::json document = parse_json_text(json_text, file_for_messages, kSceneJsonLimits);

@@ -22,6 +22,11 @@ extern const Section<SpringDef> kSpringSection;                // scene_springs_
 extern const Section<ConstraintDef> kConstraintSection;        // scene_constraints_json.cpp
 extern const Section<ConstraintEndDef> kConstraintEndSection;  // scene_constraints_json.cpp
 extern const Section<TrackDef> kTrackSection;                  // scene_tracks_json.cpp
+extern const Section<FigureDef> kFigureSection;                // scene_figures_json.cpp
+extern const Section<SegmentDef> kSegmentSection;              // scene_figures_json.cpp
+extern const Section<JointDef> kJointSection;                  // scene_figures_json.cpp
+extern const Section<SegmentShapeDef> kSegmentShapeSection;    // scene_figures_json.cpp
+extern const Section<SiteDef> kSiteSection;                    // scene_figures_json.cpp
 
 // Whether an obstacle of `kind` has the key (its point is "point", "center" or "position").
 bool obstacle_has_key(ObstacleKind kind, std::string_view key);

@@ -20,6 +20,10 @@ struct BodyFrameStats {
   Vec3 position = Vec3::Zero();   // q_c [m]
 };
 
+struct FigureFrameStats {
+  Real kinetic = 0, potential = 0;  // [J]; potential: gravity's
+};
+
 // Levels of detail chosen automatically (sim/level_of_detail.h) at the frame's start.
 struct LevelStats {
   int dormant_bodies = 0;  // "auto" bodies running without their displacements this frame
@@ -49,6 +53,7 @@ struct FrameStats {
   std::array<double, kStageCount> stage_seconds{};          // by StepStage
   std::array<double, kSubsystemCount> subsystem_seconds{};  // by SubsystemId
   std::vector<BodyFrameStats> bodies;
+  std::vector<FigureFrameStats> figures;
   BodyCollisionStats body_collisions;  // of the frame's last substep
   LevelStats levels;
   // Warnings about the model's solvers, '; '-separated (a constraint loop's dense fallback,

@@ -110,7 +110,9 @@ Model build_model(const Scene& scene) {
   model.scene = scene;
   model.gravity = scene.gravity;
   model.solver = scene.solver;
-  if (scene.bodies.empty()) throw Error(scene.file, "bodies", "needs at least one body");
+  if (scene.bodies.empty() && scene.figures.empty()) {
+    throw Error(scene.file, "bodies", "needs at least one body (or a figure in 'figures')");
+  }
   for (int b = 0; b < static_cast<int>(scene.bodies.size()); ++b) {
     BodyModel body =
         build_body_model(scene.bodies[b], scene.solver.shape_inertia_time.value_or(scene.solver.dt),
@@ -120,6 +122,15 @@ Model build_model(const Scene& scene) {
     model.n_q += body.q_size;
     model.n_v += body.v_size;
     model.bodies.push_back(std::move(body));
+  }
+  for (std::size_t f = 0; f < scene.figures.size(); ++f) {
+    CompiledFigure figure =
+        build_figure_model(scene.figures[f], scene.file, "figures[" + std::to_string(f) + "]");
+    figure.model.state_q_offset = model.n_q;
+    figure.model.state_v_offset = model.n_v;
+    model.n_q += figure.model.n_q;
+    model.n_v += figure.model.n_v;
+    model.figures.push_back(std::move(figure));
   }
   for (std::size_t o = 0; o < scene.obstacles.size(); ++o) {
     model.obstacles.push_back(build_obstacle_model(scene.obstacles[o], scene.file,

@@ -1,7 +1,7 @@
 // Model: everything constant while time runs (docs/architecture.md), compiled once from a Scene.
 // A thin aggregate: each subsystem owns its model (deform/body_model.h, collide/obstacle_model.h,
-// collide/body_collision_model.h, constrain/constraint_model.h); what lives here is what spans
-// them (tracks, whose targets are in any subsystem) and the scene-wide settings.
+// collide/body_collision_model.h, constrain/constraint_model.h, figure/figure_model.h); what lives
+// here is what spans them (tracks, whose targets are in any subsystem) and the scene-wide settings.
 // State layout: every body owns a slice of State::q and State::v (BodyModel::q_offset, v_offset;
 // its blocks in deform/body_layout.h).
 #pragma once
@@ -17,6 +17,7 @@
 #include "core/keyframes.h"
 #include "core/types.h"
 #include "deform/body_model.h"
+#include "figure/figure_build.h"
 #include "scene/scene.h"
 #include "scene/track_targets.h"
 #include "sim/snapshot_geometry.h"
@@ -42,6 +43,9 @@ struct Model {
   std::vector<TrackModel> tracks;
   ConstraintSystemModel constraints;   // ch. 7
   BodyCollisionModel body_collisions;  // 5.2.2, from the solver's keys and the constraints
+  // Articulated figures (ch. 15), each with its initial state; their slices of State follow the
+  // bodies' (FigureModel::state_q_offset, state_v_offset).
+  std::vector<CompiledFigure> figures;
   int n_q = 0, n_v = 0;
   // The longest substep advance_frame may take [s]: solver.dt, or shorter where a body's explicit
   // stability limit (deform/stability_limit.h) with the configured integrator needs it (the

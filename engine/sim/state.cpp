@@ -24,6 +24,10 @@ State initial_state(const Model& model) {
     // An "auto" body starts dormant; the first frame wakes it where it must be awake.
     st.dormant[b] = body.auto_level ? 1 : 0;
   }
+  for (const CompiledFigure& figure : model.figures) {
+    st.q.segment(figure.model.state_q_offset, figure.model.n_q) = figure.q0;
+    st.v.segment(figure.model.state_v_offset, figure.model.n_v) = figure.v0;
+  }
   return st;
 }
 

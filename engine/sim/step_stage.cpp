@@ -60,6 +60,8 @@ const char* subsystem_name(SubsystemId id) {
       return "self_collision";
     case SubsystemId::constraints:
       return "constraints";
+    case SubsystemId::figures:
+      return "figures";
     case SubsystemId::count:
       break;
   }

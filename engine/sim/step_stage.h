@@ -40,7 +40,15 @@ inline constexpr int kStageCount = static_cast<int>(StepStage::count);
 const char* stage_name(StepStage stage);
 
 // The subsystems a scene may have (sim/subsystems.cpp holds their table).
-enum class SubsystemId { bodies, obstacles, body_collisions, self_collision, constraints, count };
+enum class SubsystemId {
+  bodies,
+  obstacles,
+  body_collisions,
+  self_collision,
+  constraints,
+  figures,
+  count
+};
 inline constexpr int kSubsystemCount = static_cast<int>(SubsystemId::count);
 const char* subsystem_name(SubsystemId id);
 

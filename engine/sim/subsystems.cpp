@@ -4,6 +4,7 @@
 #include "sim/stages_bodies.h"
 #include "sim/stages_collisions.h"
 #include "sim/stages_constraints.h"
+#include "sim/stages_figures.h"
 #include "sim/stages_obstacles.h"
 #include "sim/subsystem.h"
 
@@ -54,6 +55,16 @@ constexpr Subsystem kTable[] = {
      .measure = stages::measure_constraints,
      .energy_allowance = stages::constraint_allowance,
      .add_drawables = stages::add_constraint_drawables},
+    {.id = SubsystemId::figures,
+     .present = stages::figures_present,
+     .size_workspace = stages::size_figures,
+     .rates = {{{S::dynamics, stages::figure_dynamics},
+                {S::kinematics, stages::figure_kinematics}}},
+     .kinematic_rates = stages::figure_kinematic_rates,
+     .substep = {{{S::renormalize, stages::figure_renormalize}}},
+     .measure = stages::measure_figures,
+     .describe_failure = stages::describe_figure_failure,
+     .add_drawables = stages::add_figure_drawables},
 };
 
 }  // namespace

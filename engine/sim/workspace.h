@@ -11,6 +11,7 @@
 #include "constrain/constraint_forces.h"
 #include "constrain/constraint_projection.h"
 #include "deform/body_workspace.h"
+#include "figure/figure_workspace.h"
 #include "integrate/integrators.h"
 #include "sim/frame_stats.h"
 #include "sim/state.h"
@@ -24,6 +25,14 @@ struct BodyReach {
   Vec3 centre = Vec3::Zero();
   Real radius = 0;  // of the nodes about the centre [m]
   Real travel = 0;  // how far a point of it may move in the lookahead [m]
+};
+
+// The figures' scratch (sim/stages_figures.h): each figure's recursions, the joint forces of the
+// one being evaluated, and its segments' world transforms.
+struct FiguresWorkspace {
+  std::vector<FigureWorkspace> each;
+  VecX tau;
+  std::vector<SpatialTransform> world;
 };
 
 struct Workspace {
@@ -42,6 +51,7 @@ struct Workspace {
   // Only where collisions can open the constraints (sim/stages_constraints.h).
   std::optional<ConstraintProjectionWorkspace> constraint_projection;
   std::optional<BodyCollisionWorkspace> body_collisions;
+  std::optional<FiguresWorkspace> figures;
   BodyCollisionStats body_collision_stats;  // of the last substep
   int contacts = 0;  // touching nodes counted in the substep under way (-> State::contact_nodes)
   // Whether the substep under way is the last of its frame (advance_frame sets it before each;

@@ -222,6 +222,7 @@ void measure_state(const World& world, const Inputs& inputs, const State& state,
   stats.hinge_energy = 0;
   stats.constraint_violation = 0;
   stats.bodies.resize(model.bodies.size());
+  stats.figures.resize(model.figures.size());
   evaluate_drive(model, inputs, state.time, ws.drive);
   for (const Subsystem* subsystem : world.subsystems) {
     if (!subsystem->measure) continue;
@@ -233,6 +234,10 @@ void measure_state(const World& world, const Inputs& inputs, const State& state,
     stats.kinetic += body.kinetic;
     stats.elastic += body.elastic;
     stats.potential += body.potential;
+  }
+  for (const FigureFrameStats& figure : stats.figures) {
+    stats.kinetic += figure.kinetic;
+    stats.potential += figure.potential;
   }
   if (world.has(SubsystemId::constraints)) stats.elastic += stats.hinge_energy;
 }

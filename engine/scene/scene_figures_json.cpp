@@ -1,0 +1,203 @@
+// The "figures[i]" section of a scene file (scenes/README.md, ch. 15): each figure's segments, the
+// joint that joins each to its parent, its shape and its sites. A figure is compiled once it is
+// read (figure/figure_build.h), so a cycle, a missing parent or a massless segment is refused by
+// the reader with the path of the key at fault.
+#include "figure/figure_build.h"
+#include "scene/scene_enum_names.h"
+#include "scene/scene_sections.h"
+
+namespace pbm {
+
+namespace {
+
+// How many items each list may hold (scenes/README.md, "Limits"): far above a humanoid or the
+// crane, low enough that the recursions' workspaces stay small.
+constexpr Real kMaxSegments = 1024;
+constexpr Real kMaxSites = 64;
+constexpr Real kMaxJointCoordinates = 7;  // a free joint's q: position and quaternion
+
+constexpr std::uint32_t kHasAxis =
+    kind_bit(JointKind::revolute) | kind_bit(JointKind::prismatic) | kind_bit(JointKind::universal);
+constexpr std::uint32_t kUniversal = kind_bit(JointKind::universal);
+
+// A joint's q0 or v0: as many numbers as the joint has coordinates (checked when the figure is
+// compiled, which knows the kind); empty, the default, is not written.
+template <auto Member>
+constexpr Field<JointDef> joint_numbers(FieldFormat format) {
+  format.type = ValueType::numbers;
+  format.limit = kMaxJointCoordinates;
+  return {format,
+          [](const FieldFormat& f, const JsonNode& node, JointDef& joint, const ReadContext&) {
+            const std::size_t n = require_array(node);
+            if (static_cast<Real>(n) > f.limit) {
+              fail(node, "may have at most " + bound_text(f.limit) + " numbers");
+            }
+            const VecX values = read_reals(node, static_cast<int>(n));
+            (joint.*Member).assign(values.data(), values.data() + values.size());
+          },
+          [](const FieldFormat& f, const JointDef& joint, OrderedJson& object) {
+            if (!(joint.*Member).empty()) object[f.key] = joint.*Member;
+          }};
+}
+
+constexpr auto kJointFields = std::to_array<Field<JointDef>>({
+    choice<&JointDef::kind, kJointKindNames>(
+        {.key = "kind",
+         .description = "Revolute and prismatic (1 DOF), universal (2), spherical (3, a "
+                        "quaternion), fixed (0), free (6: position and quaternion)."}),
+    unit_vector<&JointDef::axis>({.key = "axis",
+                                  .kinds = kHasAxis,
+                                  .description = "The axis in the joint frame (universal: the "
+                                                 "first, on the parent; normalized on load)."}),
+    unit_vector<&JointDef::axis2>(
+        {.key = "axis2",
+         .kinds = kUniversal,
+         .description = "Universal: the second axis, on the child (normalized on load)."}),
+    value<&JointDef::position>(
+        {.key = "position",
+         .unit = "m",
+         .description = "The joint frame's origin in the parent's frame (a root: in the world)."}),
+    unit_vector<&JointDef::orientation>(
+        {.key = "orientation",
+         .description = "The joint frame's axes in the parent's, a quaternion (w, x, y, z)."}),
+    value<&JointDef::damping>({.key = "damping",
+                               .unit = "N m s/rad or N s/m",
+                               .range = kNonNegative,
+                               .description = "Joint damping: tau = -damping q-dot."}),
+    joint_numbers<&JointDef::q0>(
+        {.key = "q0",
+         .unit = "rad or m",
+         .default_note = "at rest",
+         .description = "Initial coordinates: 1 (revolute, prismatic), 2 (universal), 4 "
+                        "(spherical: w, x, y, z), 7 (free: x, y, z, w, qx, qy, qz)."}),
+    joint_numbers<&JointDef::v0>(
+        {.key = "v0",
+         .unit = "rad/s or m/s",
+         .default_note = "zero",
+         .description = "Initial velocities, one per DOF (spherical, free: angular velocity "
+                        "in the child's frame, then the free joint's linear velocity)."}),
+});
+
+constexpr auto kSegmentShapeFields = std::to_array<Field<SegmentShapeDef>>({
+    choice<&SegmentShapeDef::kind, kSegmentShapeKindNames>(
+        {.key = "kind", .description = "The segment's solid, of uniform density."}),
+    value<&SegmentShapeDef::size>(
+        {.key = "size",
+         .unit = "m",
+         .range = kPositive,
+         .description = "Box: half extents; sphere: x = radius; cylinder, capsule: x = radius, "
+                        "z = half length of the straight part along the shape's z."}),
+    value<&SegmentShapeDef::center>({.key = "center",
+                                     .unit = "m",
+                                     .description = "The shape's centre in the segment's frame."}),
+    unit_vector<&SegmentShapeDef::orientation>(
+        {.key = "orientation",
+         .description = "The shape's axes in the segment's frame, a quaternion (w, x, y, z)."}),
+});
+
+constexpr auto kSiteFields = std::to_array<Field<SiteDef>>({
+    value<&SiteDef::name>({.key = "name", .non_empty = true, .default_note = "site<i>"}),
+    value<&SiteDef::position>(
+        {.key = "position", .unit = "m", .description = "In the segment's frame."}),
+    unit_vector<&SiteDef::orientation>(
+        {.key = "orientation",
+         .description = "The site's axes in the segment's frame, a quaternion (w, x, y, z)."}),
+});
+
+}  // namespace
+
+constexpr Section<JointDef> kJointSection{
+    .name = "joint",
+    .noun = "joint",
+    .fields = kJointFields,
+    .kind_of = [](const JointDef& j) { return static_cast<int>(j.kind); },
+    .kind_names = kNameList<kJointKindNames>};
+
+constexpr Section<SegmentShapeDef> kSegmentShapeSection{
+    .name = "segment_shape", .noun = "segment shape", .fields = kSegmentShapeFields};
+
+constexpr Section<SiteDef> kSiteSection{.name = "site",
+                                        .noun = "site",
+                                        .fields = kSiteFields,
+                                        .init = [](SiteDef& s, const ReadContext& context) {
+                                          s.name = "site" + std::to_string(context.index);
+                                        }};
+
+namespace {
+
+constexpr auto kSegmentFields = std::to_array<Field<SegmentDef>>({
+    value<&SegmentDef::name>({.key = "name", .non_empty = true, .default_note = "segment<i>"}),
+    value<&SegmentDef::parent>(
+        {.key = "parent",
+         .description = "The parent segment's name, an earlier segment; \"\": the root, "
+                        "joined to the world."}),
+    object<&SegmentDef::joint, kJointSection>(
+        {.key = "joint", .section = "joint", .description = "The joint to the parent."}),
+    object<&SegmentDef::shape, kSegmentShapeSection>(
+        {.key = "shape", .section = "segment_shape", .description = "Its geometry."}),
+    {{.key = "mass",
+      .unit = "kg",
+      .range = kNonNegative,
+      .default_note = "density times the shape's volume",
+      .description = "The segment's mass (centre and inertia from the shape)."},
+     read_value<&SegmentDef::mass>,
+     [](const FieldFormat& f, const SegmentDef& s, OrderedJson& object) {
+       if (s.mass > 0) object[f.key] = s.mass;
+     }},
+    value<&SegmentDef::density>(
+        {.key = "density", .unit = "kg/m^3", .range = kPositive, .description = "Without mass."}),
+    value<&SegmentDef::color>({.key = "color", .range = kUnitInterval, .description = "RGB."}),
+    list<&SegmentDef::sites, kSiteSection>({.key = "sites",
+                                            .limit = kMaxSites,
+                                            .section = "site",
+                                            .description = "Attachment frames (sec. 15.1.1)."}),
+});
+
+}  // namespace
+
+constexpr Section<SegmentDef> kSegmentSection{
+    .name = "segment",
+    .noun = "segment",
+    .fields = kSegmentFields,
+    .init = [](SegmentDef& s, const ReadContext& context) {
+      s.name = "segment" + std::to_string(context.index);
+    }};
+
+namespace {
+
+constexpr auto kFigureFields = std::to_array<Field<FigureDef>>({
+    value<&FigureDef::name>({.key = "name", .non_empty = true, .default_note = "figure<i>"}),
+    list<&FigureDef::segments, kSegmentSection>({.key = "segments",
+                                                 .range = {.lo = 1},
+                                                 .limit = kMaxSegments,
+                                                 .required = true,
+                                                 .section = "segment",
+                                                 .description = "Parents before children."}),
+});
+
+// The whole figure compiled as soon as it is read: its tree, masses, inertias, axes and initial
+// state are refused here, at the path of the key at fault, rather than when a Model is built.
+void check_figure(const JsonNode& node, FigureDef& figure, const ReadContext& context) {
+  (void)build_figure_model(figure, *node.file, node.path);
+  if (earlier_with(context.scene.figures, context.index, &FigureDef::name, figure.name) >= 0) {
+    const std::optional<JsonNode> name = find_child(node, "name");
+    fail(name ? *name : node, "'" + figure.name + "' names an earlier figure");
+  }
+}
+
+}  // namespace
+
+// A pendulum of one capsule hanging from a hinge 2 m up, for the studio's "add".
+constexpr Section<FigureDef> kFigureSection{
+    .name = "figure",
+    .noun = "figure",
+    .fields = kFigureFields,
+    .init = [](FigureDef& f,
+               const ReadContext& context) { f.name = "figure" + std::to_string(context.index); },
+    .check = check_figure,
+    .new_item = R"({"segments": [{"joint": {"kind": "revolute", "axis": [0, 1, 0],
+                    "position": [0, 0, 2], "q0": [0.5]},
+                    "shape": {"kind": "capsule", "size": [0.05, 0.05, 0.25],
+                    "center": [0, 0, -0.35]}}]})"};
+
+}  // namespace pbm

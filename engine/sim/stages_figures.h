@@ -1,0 +1,22 @@
+// Articulated figures' part of the step (figure/, ch. 15): each figure's accelerations by the
+// articulated-body method with its joint damping among the rates (sec. 15.2), q-dot from v, unit
+// quaternions after the step, the kinetic and potential energies the stability guard watches,
+// and the segments' shapes to draw. Rows of the subsystem table (sim/subsystems.cpp).
+#pragma once
+
+#include "sim/subsystem.h"
+
+namespace pbm::stages {
+
+bool figures_present(const Model& model);
+void size_figures(const Model& model, Workspace& ws);
+void figure_dynamics(const RateContext& c);    // dynamics: sec. 15.2, the articulated-body method
+void figure_kinematics(const RateContext& c);  // kinematics: q-dot from v
+void figure_kinematic_rates(const Model& model, const VecX& q, const VecX& v, VecX& q_dot);
+void figure_renormalize(const SubstepContext& c);  // renormalize: unit quaternions (sec. 6.1)
+void measure_figures(const Model& model, const State& state, Workspace& ws, FrameStats& stats);
+std::string describe_figure_failure(const Model& model, const State& state);
+void add_figure_drawables(const Model& model, const Inputs& inputs, const State& state,
+                          Workspace& ws, draw::Snapshot& snap);
+
+}  // namespace pbm::stages

@@ -1,0 +1,193 @@
+// Articulated figures in the World (sim/stages_figures.h): a figure read from a scene file steps
+// with the World's integrators as the articulated-body method integrated on its own does, its
+// energies are the closed-form ones, an undamped chain keeps its energy, joint damping decays a
+// swing as the closed form says, a body beside a figure moves as it does alone, and the snapshot
+// draws every segment.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "figure/articulated_body.h"
+#include "figure/figure_build.h"
+#include "figure_rk4.h"
+#include "scene/scene_json.h"
+#include "sim/simulation.h"
+#include "sim/snapshot.h"
+
+namespace pbm {
+namespace {
+
+constexpr Real kPi = std::numbers::pi_v<Real>;
+
+// n capsules hanging from a hinge 2 m up, each joined to the last by a revolute joint about y
+// (every third a spherical joint), released from `angle` about y.
+std::string chain_scene(int n, const std::string& integrator, Real damping = 0, Real angle = 0.6) {
+  std::string segments;
+  for (int i = 0; i < n; ++i) {
+    const bool spherical = i % 3 == 2;
+    const std::string q0 =
+        i > 0 ? (spherical ? "[1, 0, 0, 0]" : "[0.2]") : "[" + std::to_string(angle) + "]";
+    segments += std::string(i ? ", " : "") + "{\"name\": \"s" + std::to_string(i) + "\"" +
+                (i ? ", \"parent\": \"s" + std::to_string(i - 1) + "\"" : "") +
+                ", \"joint\": {\"kind\": \"" + (spherical ? "spherical" : "revolute") + "\"" +
+                (spherical ? "" : ", \"axis\": [0, 1, 0]") + ", \"position\": [0, 0, " +
+                (i ? "-0.6" : "2") + "], \"damping\": " + std::to_string(damping) +
+                ", \"q0\": " + q0 + (spherical ? ", \"v0\": [0.3, 0, 0.5]" : "") +
+                "}, \"shape\": {\"kind\": \"capsule\", \"size\": [0.05, 0.05, 0.25], " +
+                "\"center\": [0, 0, -0.3]}}";
+  }
+  return R"({"name": "chain", "solver": {"dt": 0.002, "fps": 50, "integrator": ")" + integrator +
+         R"("}, "figures": [{"name": "chain", "segments": [)" + segments + "]}]}";
+}
+
+Real total_energy(const FrameStats& s) {
+  return s.kinetic + s.potential;
+}
+
+TEST(FiguresWorld, EnergiesAreTheClosedFormOnes) {
+  // One capsule pendulum at angle 0.4 rad, swinging at 1.5 rad/s.
+  const Scene scene = parse_scene(
+      R"({"figures": [{"segments": [{"joint": {"axis": [0, 1, 0], "position": [0, 0, 2],
+          "q0": [0.4], "v0": [1.5]}, "shape": {"kind": "capsule", "size": [0.05, 0.05, 0.25],
+          "center": [0, 0, -0.35]}}]}]})",
+      "pendulum.json");
+  Simulation sim(scene);
+  const SegmentShapeDef& shape = scene.figures[0].segments[0].shape;
+  const Real m = 1000 * shape_volume(shape);
+  const Real d = 0.35;
+  const Real I_pivot = shape_inertia(shape, m)(1, 1) + m * d * d;
+  EXPECT_NEAR(sim.stats.kinetic, 0.5 * I_pivot * 1.5 * 1.5, 1e-12);
+  // The centre of mass R_y(0.4) (0, 0, -d) below the pivot at z = 2.
+  EXPECT_NEAR(sim.stats.potential, m * 9.81 * (2 - d * std::cos(0.4)), 1e-11);
+  EXPECT_EQ(sim.stats.elastic, 0);
+}
+
+TEST(FiguresWorld, StepsAsTheArticulatedBodyMethodIntegratedAlone) {
+  Simulation sim(parse_scene(chain_scene(4, "rk4"), "chain.json"));
+  const FigureModel& figure = sim.model.figures[0].model;
+  VecX q = sim.model.figures[0].q0, v = sim.model.figures[0].v0;
+  FigureWorkspace ws;
+  size_figure_workspace(figure, ws);
+  const VecX tau = VecX::Zero(figure.n_v);
+  auto rates = [&](const VecX& qq, const VecX& vv, VecX& q_dot, VecX& v_dot) {
+    q_dot.resize(figure.n_q);
+    v_dot.resize(figure.n_v);
+    figure_q_dot(figure, qq.data(), vv.data(), q_dot.data());
+    forward_dynamics(figure, qq.data(), vv.data(), tau.data(), {}, Vec3(0, 0, -9.81), ws,
+                     v_dot.data());
+  };
+  for (int frame = 0; frame < 50; ++frame) {
+    ASSERT_TRUE(advance_frame(sim).ok);
+    for (int k = 0; k < 10; ++k) test::figure_rk4_step(figure, q, v, 0.002, rates);
+  }
+  EXPECT_EQ(sim.stats.substeps, 10);
+  const Real q_error = (sim.state.q - q).cwiseAbs().maxCoeff();
+  const Real v_error = (sim.state.v - v).cwiseAbs().maxCoeff();
+  std::printf("after 1 s: |q - q_alone| %.2e, |v - v_alone| %.2e\n", q_error, v_error);
+  EXPECT_LT(q_error, 1e-12);
+  EXPECT_LT(v_error, 1e-11);
+}
+
+TEST(FiguresWorld, AnUndampedChainKeepsItsEnergy) {
+  // RK4 at dt = 2 ms over 4 s: the chain swings through +-1 J of kinetic energy.
+  Simulation sim(parse_scene(chain_scene(5, "rk4"), "chain.json"));
+  const Real e0 = total_energy(sim.stats);
+  Real drift = 0, largest_kinetic = 0;
+  for (int frame = 0; frame < 200; ++frame) {
+    ASSERT_TRUE(advance_frame(sim).ok);
+    drift = std::max(drift, std::abs(total_energy(sim.stats) - e0));
+    largest_kinetic = std::max(largest_kinetic, sim.stats.kinetic);
+  }
+  std::printf("undamped: largest kinetic %.4f J, energy drift %.2e J (%.2e relative)\n",
+              largest_kinetic, drift, drift / largest_kinetic);
+  EXPECT_GT(largest_kinetic, 1.0);
+  EXPECT_LT(drift / largest_kinetic, 1e-6);
+}
+
+TEST(FiguresWorld, AJointsDampingDecaysASwingAsTheLinearOscillatorDoes) {
+  // A capsule pendulum released 1 mrad from rest under joint damping d: at that amplitude it is
+  // the oscillator I theta'' + d theta' + m g l theta = 0 (the nonlinearity is 1e-7 of theta),
+  // whose solution is theta = A e^(-s t) (cos w t + s / w sin w t), s = d / (2 I),
+  // w = sqrt(m g l / I - s^2), with I about the pivot.
+  const Real A = 1e-3, d = 0.5;
+  const Scene scene = parse_scene(
+      R"({"solver": {"dt": 0.001, "fps": 50, "integrator": "rk4"}, "figures": [{"segments": [
+          {"joint": {"axis": [0, 1, 0], "position": [0, 0, 2], "damping": 0.5, "q0": [0.001]},
+           "shape": {"kind": "capsule", "size": [0.05, 0.05, 0.25],
+           "center": [0, 0, -0.35]}}]}]})",
+      "pendulum.json");
+  Simulation sim(scene);
+  const SegmentShapeDef& shape = scene.figures[0].segments[0].shape;
+  const Real m = 1000 * shape_volume(shape), l = 0.35;
+  const Real I = shape_inertia(shape, m)(1, 1) + m * l * l;
+  const Real s = d / (2 * I), w = std::sqrt(m * 9.81 * l / I - s * s);
+  Real worst = 0;
+  for (int frame = 0; frame < 250; ++frame) {  // 5 s, about 5 periods
+    ASSERT_TRUE(advance_frame(sim).ok);
+    const Real t = sim.state.time;
+    const Real expected = A * std::exp(-s * t) * (std::cos(w * t) + s / w * std::sin(w * t));
+    worst = std::max(worst, std::abs(sim.state.q[0] - expected));
+  }
+  std::printf(
+      "damped pendulum: decay %.4f 1/s, period %.4f s; worst |theta - closed form| "
+      "%.2e rad of %.0e\n",
+      s, 2 * std::numbers::pi / w, worst, A);
+  EXPECT_LT(worst, 1e-3 * A);
+  // Without the damping the swing would keep its amplitude: e^(-5 s) is 0.15 here, so a run that
+  // ignored d would be 0.85 A off by the end.
+  EXPECT_LT(std::exp(-s * 5), 0.2);
+}
+
+TEST(FiguresWorld, ABodyBesideAFigureMovesAsItDoesAlone) {
+  const std::string body = R"({"name": "ball", "position": [3, 0, 1], "velocity": [0, 0, 2],
+      "material": {"mass": 1}})";
+  const std::string alone = R"({"solver": {"dt": 0.002, "fps": 50}, "bodies": [)" + body + "]}";
+  std::string both = chain_scene(3, "euler");
+  both.insert(1, R"("bodies": [)" + body + "], ");
+  Simulation a(parse_scene(alone, "alone.json")), b(parse_scene(both, "both.json"));
+  ASSERT_EQ(b.model.figures[0].model.state_q_offset, a.model.n_q);
+  for (int frame = 0; frame < 25; ++frame) {
+    ASSERT_TRUE(advance_frame(a).ok);
+    ASSERT_TRUE(advance_frame(b).ok);
+  }
+  EXPECT_TRUE(a.state.q == b.state.q.head(a.model.n_q));
+  EXPECT_TRUE(a.state.v == b.state.v.head(a.model.n_v));
+  EXPECT_NE(b.state.q.tail(b.model.figures[0].model.n_q), b.model.figures[0].q0);
+}
+
+TEST(FiguresWorld, RunsAreBitIdentical) {
+  Simulation a(parse_scene(chain_scene(6, "rk45"), "chain.json"));
+  Simulation b(parse_scene(chain_scene(6, "rk45"), "chain.json"));
+  for (int frame = 0; frame < 20; ++frame) {
+    ASSERT_TRUE(advance_frame(a).ok);
+    ASSERT_TRUE(advance_frame(b).ok);
+  }
+  EXPECT_EQ(hash_state(a.state), hash_state(b.state));
+}
+
+TEST(FiguresWorld, TheSnapshotDrawsEverySegmentWhereItIs) {
+  Simulation sim(parse_scene(chain_scene(3, "euler", 0, kPi / 2), "chain.json"));
+  const draw::Snapshot snap = make_snapshot(sim);
+  ASSERT_EQ(snap.primitives.size(), 3u);
+  // The first capsule, turned a right angle about y: its centre 0.3 m from the pivot along -z
+  // turned to -x, its long axis along x.
+  const draw::Primitive& p = snap.primitives[0];
+  EXPECT_EQ(p.shape, draw::PrimitiveShape::capsule);
+  EXPECT_NEAR(p.center.x(), -0.3f, 1e-6f);
+  EXPECT_NEAR(p.center.z(), 2.0f, 1e-6f);
+  EXPECT_NEAR(std::abs(p.rotation.col(2).x()), 1.0f, 1e-6f);
+  EXPECT_FALSE(snap.focus.empty());
+}
+
+TEST(FiguresWorld, AFigureGoneNaNIsNamed) {
+  Simulation sim(parse_scene(chain_scene(3, "euler"), "chain.json"));
+  sim.state.v[1] = std::nan("");
+  const FrameResult result = advance_frame(sim);
+  EXPECT_FALSE(result.ok);
+  EXPECT_NE(result.message.find("figure 'chain', segment '"), std::string::npos) << result.message;
+}
+
+}  // namespace
+}  // namespace pbm

@@ -1,0 +1,117 @@
+// The "figures[i]" section of scene files (ch. 15): segments, joints of every kind, shapes and
+// sites with their defaults; the figure compiled as it is read, so that a bad tree, mass, axis
+// or initial state is refused at the path of the key at fault.
+#include <gtest/gtest.h>
+
+#include <utility>
+#include <vector>
+
+#include "scene_json_support.h"
+
+namespace pbm::scene_test {
+namespace {
+
+TEST(SceneFiguresJson, SegmentsJointsShapesAndSitesWithDefaults) {
+  const Scene s = parse_scene(full_scene().dump(), kFile);
+  ASSERT_EQ(s.figures.size(), 1u);
+  const FigureDef& arm = s.figures[0];
+  EXPECT_EQ(arm.name, "arm");
+  ASSERT_EQ(arm.segments.size(), 6u);
+  const SegmentDef& base = arm.segments[0];
+  EXPECT_EQ(base.parent, "");
+  EXPECT_EQ(base.joint.kind, JointKind::free);
+  EXPECT_EQ(base.joint.q0, (std::vector<Real>{0, 0, 1, 2, 0, 0, 0}));
+  EXPECT_EQ(base.mass, 2);
+  const SegmentDef& upper = arm.segments[1];
+  EXPECT_EQ(upper.parent, "base");
+  EXPECT_EQ(upper.joint.axis, Vec3(0, 1, 0));  // normalized on load
+  EXPECT_EQ(upper.joint.damping, 0.1);
+  EXPECT_EQ(upper.shape.kind, SegmentShapeKind::capsule);
+  EXPECT_EQ(upper.mass, 0);  // from the density
+  EXPECT_EQ(upper.density, 900);
+  ASSERT_EQ(upper.sites.size(), 2u);
+  EXPECT_EQ(upper.sites[0].name, "elbow");
+  EXPECT_EQ(upper.sites[1].name, "site1");
+  EXPECT_EQ(upper.sites[1].orientation, Vec4(0, 1, 0, 0));
+  EXPECT_EQ(arm.segments[2].name, "segment2");
+  EXPECT_EQ(arm.segments[2].joint.kind, JointKind::spherical);
+  EXPECT_EQ(arm.segments[3].joint.axis2, Vec3(0, 0, 1));
+  EXPECT_EQ(arm.segments[4].joint.kind, JointKind::prismatic);
+  EXPECT_EQ(arm.segments[5].joint.kind, JointKind::fixed);
+  EXPECT_EQ(arm.segments[5].shape.kind, SegmentShapeKind::box);
+  EXPECT_EQ(arm.segments[5].density, 1000);
+}
+
+TEST(SceneFiguresJson, ASceneMayHoldOnlyFigures) {
+  const Scene s = parse_scene(R"({"figures": [{"segments": [{}]}]})", kFile);
+  EXPECT_TRUE(s.bodies.empty());
+  ASSERT_EQ(s.figures.size(), 1u);
+  EXPECT_EQ(s.figures[0].name, "figure0");
+  EXPECT_EQ(s.figures[0].segments[0].name, "segment0");
+  expect_text_error(R"({"figures": []})", "bodies", "is required (or 'figures')");
+}
+
+TEST(SceneFiguresJsonErrors, ErrorsNameTheirPath) {
+  const json joint = {{"kind", "revolute"}, {"axis", {0, 1, 0}}};
+  const std::vector<std::tuple<json, std::string, std::string>> cases = {
+      {{{{"name", "a"}, {"parent", "b"}}, {{"name", "b"}, {"parent", "a"}}},
+       "figures[0].segments[0].parent",
+       "the parents form a cycle through 'a'"},
+      {{{{"name", "a"}}, {{"name", "b"}, {"parent", "c"}}},
+       "figures[0].segments[1].parent",
+       "no segment is named 'c'"},
+      {{{{"name", "a"}, {"parent", "b"}}, {{"name", "b"}}},
+       "figures[0].segments[0].parent",
+       "'b' must come before its child"},
+      {{{{"name", "a"}}, {{"name", "a"}}}, "figures[0].segments[1].name", "names an earlier"},
+      {{{{"density", 0}}}, "figures[0].segments[0].density", "must be > 0"},
+      {{{{"mass", -1}}}, "figures[0].segments[0].mass", "must be >= 0"},
+      {{{{"shape", {{"size", {0.1, 0, 0.1}}}}}},
+       "figures[0].segments[0].shape.size[1]",
+       "must be > 0"},
+      {{{{"joint", {{"axis", {0, 0, 0}}}}}}, "figures[0].segments[0].joint.axis", "nonzero"},
+      {{{{"joint", {{"kind", "hinge"}}}}}, "figures[0].segments[0].joint.kind", "must be one of"},
+      {{{{"joint", {{"axis2", {0, 1, 0}}}}}},
+       "figures[0].segments[0].joint.axis2",
+       "not valid for a revolute joint"},
+      {{{{"joint", {{"kind", "spherical"}, {"axis", {0, 1, 0}}}}}},
+       "figures[0].segments[0].joint.axis",
+       "not valid for a spherical joint"},
+      {{{{"joint", {{"q0", {0.1, 0.2}}}}}}, "figures[0].segments[0].joint.q0", "needs 1 numbers"},
+      {{{{"joint", {{"kind", "spherical"}, {"q0", {0, 0, 0, 0}}}}}},
+       "figures[0].segments[0].joint.q0",
+       "the quaternion must be nonzero"},
+      {{{{"joint", {{"v0", {0, 0, 0, 0, 0, 0, 0, 0}}}}}},
+       "figures[0].segments[0].joint.v0",
+       "at most 7 numbers"},
+      {{{{"joint", {{"kind", "universal"}, {"v0", {1}}}}}},
+       "figures[0].segments[0].joint.v0",
+       "needs 2 numbers"},
+      {{{{"sites", {{{"name", ""}}}}}},
+       "figures[0].segments[0].sites[0].name",
+       "must not be empty"},
+      {{{{"joint", joint}, {"color", {1, 2, 0}}}},
+       "figures[0].segments[0].color[1]",
+       "must be in [0, 1]"},
+      {{{{"wing", 1}}}, "figures[0].segments[0].wing", "unknown key"},
+  };
+  for (const auto& [segments, path, message] : cases) {
+    expect_error(json{{"figures", {{{"segments", segments}}}}}, path, message);
+  }
+  expect_error(json{{"figures", {{{"segments", json::array()}}}}}, "figures[0].segments",
+               "at least one segment");
+  expect_error(json{{"figures",
+                     {{{"name", "x"}, {"segments", {json::object()}}},
+                      {{"name", "x"}, {"segments", {json::object()}}}}}},
+               "figures[1].name", "names an earlier figure");
+}
+
+TEST(SceneFiguresJson, RoundTripIsExact) {
+  const Scene a = parse_scene(full_scene().dump(), kFile);
+  const Scene b = parse_scene(scene_to_json(a), kFile);
+  expect_same_scene(a, b);
+  EXPECT_EQ(scene_to_json(a), scene_to_json(b));
+}
+
+}  // namespace
+}  // namespace pbm::scene_test
