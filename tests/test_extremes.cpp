@@ -62,6 +62,35 @@ Scene with(std::function<void(Scene&)> change) {
   return s;
 }
 
+// n capsules of `mass` kg, 5 / n m long, hanging by revolute joints about y from 6 m, released
+// horizontal (a figure, ch. 15); the last one `last_mass` kg when given.
+Scene figure_chain(int n, IntegratorKind integrator, Real mass, Real damping = 0,
+                   Real last_mass = 0) {
+  Scene s;
+  s.name = "extreme";
+  s.solver.dt = 1e-3;
+  s.solver.integrator = integrator;
+  FigureDef chain;
+  chain.name = "chain";
+  const Real link = 5.0 / n;
+  for (int i = 0; i < n; ++i) {
+    SegmentDef seg;
+    seg.name = "link" + std::to_string(i);
+    if (i > 0) seg.parent = "link" + std::to_string(i - 1);
+    seg.joint.axis = Vec3::UnitY();
+    seg.joint.position = i ? Vec3(0, 0, -link) : Vec3(0, 0, 6);
+    seg.joint.damping = damping;
+    if (i == 0) seg.joint.q0 = {1.5707963267948966};
+    seg.shape.kind = SegmentShapeKind::capsule;
+    seg.shape.size = Vec3(0.2 * link, 0.2 * link, 0.3 * link);
+    seg.shape.center = Vec3(0, 0, -0.5 * link);
+    seg.mass = i + 1 == n && last_mass > 0 ? last_mass : mass;
+    chain.segments.push_back(seg);
+  }
+  s.figures = {chain};
+  return s;
+}
+
 std::vector<Cell> cells() {
   std::vector<Cell> c;
   for (Real w : {1e-6, 1e6}) {
@@ -192,6 +221,17 @@ std::vector<Cell> cells() {
                  return s;
                },
                10});
+  // Articulated figures (ch. 15): long chains, a mass ratio across a joint, stiff joint damping.
+  c.push_back({"figure: 100-segment chain, rk4",
+               [] { return figure_chain(100, IntegratorKind::rk4, 0.1); }});
+  c.push_back({"figure: 100-segment chain, euler",
+               [] { return figure_chain(100, IntegratorKind::euler, 0.1); }});
+  c.push_back({"figure: mass ratio 1:1e4, a 1e4 kg segment hung from 1 kg ones",
+               [] { return figure_chain(5, IntegratorKind::rk4, 1, 0, 1e4); }});
+  c.push_back({"figure: joint damping 1e6 N m s/rad, euler",
+               [] { return figure_chain(5, IntegratorKind::euler, 1, 1e6); }});
+  c.push_back(
+      {"figure: segment mass 1e-6 kg", [] { return figure_chain(5, IntegratorKind::rk4, 1e-6); }});
   return c;
 }
 

@@ -189,5 +189,18 @@ TEST(FiguresWorld, AFigureGoneNaNIsNamed) {
   EXPECT_NE(result.message.find("figure 'chain', segment '"), std::string::npos) << result.message;
 }
 
+// Joint damping far past explicit Euler's limit (dt d / I > 2) makes the swing grow every step:
+// the guard stops the run naming the figure.
+TEST(FiguresWorld, AFigureWhoseEnergyGrowsIsNamed) {
+  Scene scene = parse_scene(chain_scene(3, "euler", 30), "chain.json");
+  scene.solver.max_retries = 0;
+  Simulation sim(scene);
+  FrameResult result;
+  for (int frame = 0; frame < 30 && result.ok; ++frame) result = advance_frame(sim);
+  std::printf("%s\n", result.message.c_str());
+  EXPECT_FALSE(result.ok);
+  EXPECT_EQ(result.message.rfind("figure 'chain'", 0), 0u) << result.message;
+}
+
 }  // namespace
 }  // namespace pbm

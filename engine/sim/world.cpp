@@ -102,13 +102,19 @@ std::string body_that_gained(const Model& model, const FrameStats& before,
   return model.bodies.empty() ? std::string() : model.bodies[best].name;
 }
 
-// Names the body whose energy grew most out of line, or "" (the growth is then the whole's).
-std::string body_that_grew(const Model& model, const FrameStats& before, const FrameStats& after,
+// Names the body or figure whose energy grew most out of line ("body 'ball'"), or "" (the growth
+// is then the whole's).
+std::string part_that_grew(const Model& model, const FrameStats& before, const FrameStats& after,
                            Real e0, Real e1) {
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     if (after.bodies[b].kinetic + after.bodies[b].elastic >
         before.bodies[b].kinetic + before.bodies[b].elastic + 0.5 * (e1 - e0)) {
-      return model.bodies[b].name;
+      return "body '" + model.bodies[b].name + "'";
+    }
+  }
+  for (std::size_t f = 0; f < model.figures.size(); ++f) {
+    if (after.figures[f].kinetic > before.figures[f].kinetic + 0.5 * (e1 - e0)) {
+      return "figure '" + model.figures[f].model.name + "'";
     }
   }
   return {};
@@ -329,8 +335,8 @@ FrameResult advance_frame(const World& world, const Inputs& inputs, State& state
       if (!(e1 <= allowed)) {
         failure = "kinetic+elastic energy grew from " + std::to_string(e0) + " J to " +
                   std::to_string(e1) + " J in one frame";
-        const std::string body = body_that_grew(model, before, after, e0, e1);
-        if (!body.empty()) failure = "body '" + body + "': " + failure;
+        const std::string part = part_that_grew(model, before, after, e0, e1);
+        if (!part.empty()) failure = part + ": " + failure;
       } else {
         // The run-level guard: the total energy's growth over the frame beyond the work of the
         // inputs, accumulated while positive. A drive that depends on time (tracks moving
