@@ -83,7 +83,8 @@ inline json full_scene() {
        "rest_angle": 0.1, "damping": 0.5}
     ],
     "figures": [
-      {"name": "arm", "segments": [
+      {"name": "arm", "restitution": 0.3, "impact_speed": 0.2, "contact_stiffness": 5e4,
+       "contact_damping": 50, "segments": [
         {"name": "base", "joint": {"kind": "free", "position": [0, 0, 1],
                                    "q0": [0, 0, 1, 2, 0, 0, 0], "v0": [0, 0, 1, 0.5, 0, 0]},
          "shape": {"kind": "box", "size": [0.2, 0.1, 0.05]}, "mass": 2},
@@ -239,6 +240,10 @@ inline void expect_same_scene(const Scene& a, const Scene& b) {
   ASSERT_EQ(a.figures.size(), b.figures.size());
   for (std::size_t f = 0; f < a.figures.size(); ++f) {
     EXPECT_EQ(a.figures[f].name, b.figures[f].name);
+    EXPECT_EQ(a.figures[f].restitution, b.figures[f].restitution);
+    EXPECT_EQ(a.figures[f].impact_speed, b.figures[f].impact_speed);
+    EXPECT_EQ(a.figures[f].contact_stiffness, b.figures[f].contact_stiffness);
+    EXPECT_EQ(a.figures[f].contact_damping, b.figures[f].contact_damping);
     ASSERT_EQ(a.figures[f].segments.size(), b.figures[f].segments.size());
     for (std::size_t i = 0; i < a.figures[f].segments.size(); ++i) {
       const SegmentDef& x = a.figures[f].segments[i];

@@ -202,5 +202,70 @@ TEST(FiguresWorld, AFigureWhoseEnergyGrowsIsNamed) {
   EXPECT_EQ(result.message.rfind("figure 'chain'", 0), 0u) << result.message;
 }
 
+// A 1 kg box (0.4 x 0.2 x 0.1 m) on a free joint over a floor of friction mu, its centre at
+// height z moving at (vx, 0, vz), with restitution e.
+Scene box_over_floor(Real z, Real vx, Real vz, Real e, Real mu) {
+  char text[1024];
+  std::snprintf(text, sizeof text,
+                R"({"solver": {"dt": 0.001, "fps": 50, "integrator": "rk4"},
+                    "obstacles": [{"name": "floor", "friction": %.17g}],
+                    "figures": [{"name": "box", "restitution": %.17g, "segments": [
+                      {"joint": {"kind": "free", "q0": [0, 0, %.17g, 1, 0, 0, 0],
+                                 "v0": [0, 0, 0, %.17g, 0, %.17g]},
+                       "shape": {"kind": "box", "size": [0.2, 0.1, 0.05]}, "mass": 1}]}]})",
+                mu, e, z, vx, vz);
+  return parse_scene(text, "box.json");
+}
+
+constexpr Real kG = 9.81, kContactStiffness = 2e4;
+// Where the box rests: its four lower corners share its weight over their springs.
+constexpr Real kRestHeight = 0.05 - kG / (4 * kContactStiffness);
+
+TEST(FiguresWorld, ABoxDroppedOnTheFloorLeavesWithItsRestitution) {
+  for (const Real e : {0.0, 0.5, 1.0}) {
+    Simulation sim(box_over_floor(1.0, 0, 0, e, 0.5));
+    Real before = 0, after = 0;
+    auto watch = [&](StepStage stage, SubsystemId, bool done, const State& state, Workspace&) {
+      if (stage != StepStage::impacts) return;
+      (done ? after : before) = state.v[5];
+    };
+    const StageObserver observer = watch;
+    int evaluations = 0;
+    for (int step = 0; step < 1000 && !(after > before); ++step) {
+      ASSERT_TRUE(advance_substep(sim.world, sim.inputs, sim.state, sim.model.solver.dt, sim.ws,
+                                  evaluations, &observer));
+    }
+    std::printf("e = %.1f: v_z %.6f -> %.12f m/s\n", e, before, after);
+    ASSERT_LT(before, -4.0);  // it fell 1 m
+    EXPECT_NEAR(after, -e * before, 1e-9 * std::abs(before));
+    // Level, it stays level: the four corners' impulses are equal.
+    EXPECT_LT(sim.state.v.head(3).norm(), 1e-9);
+  }
+}
+
+TEST(FiguresWorld, ABoxRestsOnTheFloorWhereItsWeightBalancesTheSprings) {
+  Simulation sim(box_over_floor(0.3, 0, 0, 0, 0.5));
+  for (int frame = 0; frame < 100; ++frame) ASSERT_TRUE(advance_frame(sim).ok);
+  std::printf("rest height %.9f m (closed form %.9f), speed %.2e m/s, %d contacts\n",
+              sim.state.q[2], kRestHeight, sim.state.v.norm(), sim.stats.figures[0].contacts);
+  EXPECT_NEAR(sim.state.q[2], kRestHeight, 1e-7);
+  EXPECT_LT(sim.state.v.norm(), 1e-6);
+  EXPECT_EQ(sim.stats.figures[0].contacts, 4);
+  EXPECT_NEAR(sim.stats.figures[0].elastic,
+              4 * 0.5 * kContactStiffness * std::pow(0.05 - kRestHeight, 2), 1e-9);
+}
+
+TEST(FiguresWorld, ABoxSlidesTheDistanceCoulombsLawGives) {
+  // Sliding at 2 m/s on mu = 0.5 it decelerates at mu g and stops after v^2 / (2 mu g).
+  const Real v0 = 2, mu = 0.5;
+  Simulation sim(box_over_floor(kRestHeight, v0, 0, 0, mu));
+  for (int frame = 0; frame < 100; ++frame) ASSERT_TRUE(advance_frame(sim).ok);
+  const Real expected = v0 * v0 / (2 * mu * kG);
+  std::printf("slid %.5f m (Coulomb: %.5f m), speed now %.2e m/s\n", sim.state.q[0], expected,
+              sim.state.v.norm());
+  EXPECT_NEAR(sim.state.q[0], expected, 0.01 * expected);
+  EXPECT_LT(sim.state.v.norm(), 1e-3);
+}
+
 }  // namespace
 }  // namespace pbm

@@ -16,6 +16,8 @@ TEST(SceneFiguresJson, SegmentsJointsShapesAndSitesWithDefaults) {
   ASSERT_EQ(s.figures.size(), 1u);
   const FigureDef& arm = s.figures[0];
   EXPECT_EQ(arm.name, "arm");
+  EXPECT_EQ(arm.restitution, 0.3);
+  EXPECT_EQ(arm.contact_stiffness, 5e4);
   ASSERT_EQ(arm.segments.size(), 6u);
   const SegmentDef& base = arm.segments[0];
   EXPECT_EQ(base.parent, "");
@@ -98,6 +100,10 @@ TEST(SceneFiguresJsonErrors, ErrorsNameTheirPath) {
   for (const auto& [segments, path, message] : cases) {
     expect_error(json{{"figures", {{{"segments", segments}}}}}, path, message);
   }
+  expect_error(json{{"figures", {{{"restitution", 1.5}, {"segments", {json::object()}}}}}},
+               "figures[0].restitution", "must be in [0, 1]");
+  expect_error(json{{"figures", {{{"contact_stiffness", 0}, {"segments", {json::object()}}}}}},
+               "figures[0].contact_stiffness", "must be > 0");
   expect_error(json{{"figures", {{{"segments", json::array()}}}}}, "figures[0].segments",
                "at least one segment");
   expect_error(json{{"figures",

@@ -62,6 +62,14 @@ struct SegmentDef {
 struct FigureDef {
   std::string name;
   std::vector<SegmentDef> segments;
+  // Contacts with obstacles, in the book's two stages (sec. 15.3): a segment reaching an obstacle
+  // faster than impact_speed has an impact, its velocities jumping by (15.1)-(15.8) with
+  // restitution e (15.2) and the obstacle's friction as Coulomb's mu; while it stays in contact,
+  // a mild spring-damper at each contact point holds it out.
+  Real restitution = 0;          // e of (15.2), in [0, 1]
+  Real impact_speed = 0.1;       // [m/s], >= 0: slower approaches are left to the springs
+  Real contact_stiffness = 2e4;  // [N/m] per contact point, > 0
+  Real contact_damping = 200;    // [N s/m] per contact point, >= 0
 };
 
 }  // namespace pbm

@@ -173,6 +173,24 @@ constexpr auto kFigureFields = std::to_array<Field<FigureDef>>({
                                                  .required = true,
                                                  .section = "segment",
                                                  .description = "Parents before children."}),
+    value<&FigureDef::restitution>({.key = "restitution",
+                                    .range = kUnitInterval,
+                                    .description = "e of (15.2) at impacts with obstacles."}),
+    value<&FigureDef::impact_speed>(
+        {.key = "impact_speed",
+         .unit = "m/s",
+         .range = kNonNegative,
+         .description = "Approaches faster than this are impacts (15.1)-(15.8); slower ones are "
+                        "left to the contact springs."}),
+    value<&FigureDef::contact_stiffness>(
+        {.key = "contact_stiffness",
+         .unit = "N/m",
+         .range = kPositive,
+         .description = "The contact stage's spring, per contact point."}),
+    value<&FigureDef::contact_damping>({.key = "contact_damping",
+                                        .unit = "N s/m",
+                                        .range = kNonNegative,
+                                        .description = "Its damper, per contact point."}),
 });
 
 // The whole figure compiled as soon as it is read: its tree, masses, inertias, axes and initial

@@ -22,6 +22,8 @@ struct BodyFrameStats {
 
 struct FigureFrameStats {
   Real kinetic = 0, potential = 0;  // [J]; potential: gravity's
+  Real elastic = 0;                 // the contact springs' [J]
+  int contacts = 0;                 // contact points touching an obstacle
 };
 
 // Levels of detail chosen automatically (sim/level_of_detail.h) at the frame's start.

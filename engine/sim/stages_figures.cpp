@@ -2,10 +2,12 @@
 
 #include <algorithm>
 
+#include "collide/obstacle.h"
 #include "core/quaternion.h"
 #include "figure/articulated_body.h"
 #include "figure/figure_impact.h"
 #include "figure/figure_kinematics.h"
+#include "figure/segment_probes.h"
 
 namespace pbm::stages {
 
@@ -41,6 +43,55 @@ void joint_damping(const FigureModel& figure, const Real* v, Real* tau) {
   }
 }
 
+// One contact point of a segment with an obstacle, in world coordinates.
+struct ContactPoint {
+  Vec3 point;     // the probe's deepest point [m]
+  Vec3 normal;    // the obstacle's outward normal
+  Real depth;     // how far inside [m], > 0
+  Vec3 velocity;  // of the segment's material at `point` relative to the obstacle's [m/s]
+};
+
+// Calls visit(segment, point) for every probe of every segment of the figure inside an obstacle
+// (after figure_kinematics and segment_world_transforms of (q, v) in w and world).
+template <typename Visit>
+void for_each_contact(const FigureModel& figure, const FigureDef& def, const FigureWorkspace& w,
+                      const std::vector<SpatialTransform>& world, Obstacles obstacles,
+                      Visit&& visit) {
+  SegmentProbes probes;
+  for (int i = 0; i < figure.size(); ++i) {
+    const int n = segment_probes(def.segments[i].shape, probes);
+    const SpatialTransform& X = world[i];  // world -> segment
+    const MotionVector v = motion_from_vec6(w.v[i]);
+    for (int k = 0; k < n; ++k) {
+      const Vec3 centre = X.r + X.E.transpose() * probes[k].center;
+      for (const ObstacleModel& obstacle : obstacles) {
+        Vec3 normal;
+        const Real depth = probes[k].radius - signed_distance(obstacle, centre, normal);
+        if (!(depth > 0)) continue;
+        const Vec3 point = centre - probes[k].radius * normal;
+        const Vec3 local = X.E * (point - X.r);
+        const Vec3 material = X.E.transpose() * (v.linear + v.angular.cross(local));
+        visit(i, ContactPoint{point, normal, depth, material - obstacle.velocity_at(point)},
+              obstacle);
+      }
+    }
+  }
+}
+
+// The contact stage's force on the segment at a contact point (sec. 15.3): a mild spring-damper
+// along the normal that only pushes, and Coulomb friction mu f_n against the sliding, viscous
+// (the same damper) below the cone so that a resting contact does not chatter.
+Vec3 contact_force(const FigureDef& def, const ContactPoint& c, Real mu) {
+  const Real v_n = c.velocity.dot(c.normal);
+  const Real f_n = std::max(Real(0), def.contact_stiffness * c.depth - def.contact_damping * v_n);
+  const Vec3 v_t = c.velocity - v_n * c.normal;
+  const Real speed = v_t.norm();
+  Vec3 f_t = -def.contact_damping * v_t;
+  if (def.contact_damping * speed > mu * f_n)
+    f_t = speed > 0 ? Vec3(-mu * f_n / speed * v_t) : Vec3::Zero();
+  return f_n * c.normal + f_t;
+}
+
 }  // namespace
 
 bool figures_present(const Model& model) {
@@ -59,6 +110,86 @@ void size_figures(const Model& model, Workspace& ws) {
   }
   fw.tau.setZero(n_v);
   fw.world.reserve(static_cast<std::size_t>(n_segments));
+  fw.contact_forces.resize(model.figures.size());
+  int n_q = 0;
+  for (std::size_t f = 0; f < model.figures.size(); ++f) {
+    fw.contact_forces[f].assign(static_cast<std::size_t>(model.figures[f].model.size()),
+                                ForceVector{});
+    n_q = std::max(n_q, model.figures[f].model.n_q);
+  }
+  fw.q.setZero(n_q);
+  fw.v.setZero(n_v);
+}
+
+bool figure_contacts_present(const Model& model) {
+  return !model.obstacles.empty();
+}
+
+void figure_contact_forces(const RateContext& c) {
+  if (!figure_contacts_present(c.model)) return;
+  FiguresWorkspace& fw = *c.ws.figures;
+  for (std::size_t f = 0; f < c.model.figures.size(); ++f) {
+    const FigureModel& figure = c.model.figures[f].model;
+    const FigureDef& def = c.model.scene.figures[f];
+    FigureWorkspace& w = fw.each[f];
+    std::vector<ForceVector>& forces = fw.contact_forces[f];
+    std::fill(forces.begin(), forces.end(), ForceVector{});
+    pbm::figure_kinematics(figure, q_of(figure, c.q), v_of(figure, c.v), w);
+    segment_world_transforms(figure, w, fw.world);
+    for_each_contact(figure, def, w, fw.world, c.ws.drive.obstacles,
+                     [&](int i, const ContactPoint& contact, const ObstacleModel& obstacle) {
+                       // A point arriving faster than impact_speed is the impact stage's, at the
+                       // step's end: the springs act only after the impact (sec. 15.3), else
+                       // their damper would take the arrival's speed before the e-law sees it.
+                       if (contact.velocity.dot(contact.normal) < -def.impact_speed) return;
+                       // The force at the point, as a force on the segment in its own frame.
+                       const SpatialTransform& X = fw.world[i];
+                       const Vec3 force = X.E * contact_force(def, contact, obstacle.friction);
+                       const Vec3 local = X.E * (contact.point - X.r);
+                       forces[i] += ForceVector{local.cross(force), force};
+                     });
+  }
+}
+
+void figure_impacts(const SubstepContext& c) {
+  // The obstacles where the step ends, as the bodies' collision stage places them.
+  place_obstacles(c.model, c.inputs, c.state.time, c.ws.drive.obstacles);
+  FiguresWorkspace& fw = *c.ws.figures;
+  for (std::size_t f = 0; f < c.model.figures.size(); ++f) {
+    const FigureModel& figure = c.model.figures[f].model;
+    const FigureDef& def = c.model.scene.figures[f];
+    FigureWorkspace& w = fw.each[f];
+    fw.q.head(figure.n_q) = c.state.q.segment(figure.state_q_offset, figure.n_q);
+    fw.v.head(figure.n_v) = c.state.v.segment(figure.state_v_offset, figure.n_v);
+    pbm::figure_kinematics(figure, fw.q.data(), fw.v.data(), w);
+    segment_world_transforms(figure, w, fw.world);
+    // Obstacle by obstacle (each has its own friction): the contact points approaching it
+    // faster than impact_speed have their impact together, (15.1)-(15.8).
+    for (const ObstacleModel& obstacle : c.ws.drive.obstacles) {
+      fw.impacts.clear();
+      for_each_contact(figure, def, w, fw.world, Obstacles(&obstacle, 1),
+                       [&](int i, const ContactPoint& contact, const ObstacleModel&) {
+                         if (contact.velocity.dot(contact.normal) < -def.impact_speed) {
+                           fw.impacts.push_back({.figure_a = 0,
+                                                 .segment_a = i,
+                                                 .point = contact.point,
+                                                 .normal = contact.normal});
+                         }
+                       });
+      if (fw.impacts.empty()) continue;
+      VecX q = fw.q.head(figure.n_q), v = fw.v.head(figure.n_v);
+      const ImpactFigure one{&figure, &q, &v};
+      resolve_impact({&one, 1}, fw.impacts,
+                     {.restitution = def.restitution,
+                      .friction = ImpactFriction::coulomb,
+                      .mu = obstacle.friction},
+                     fw.impact);
+      fw.v.head(figure.n_v) = v;
+      c.state.v.segment(figure.state_v_offset, figure.n_v) = v;
+      // The velocities changed: the next obstacle's contacts see them.
+      pbm::figure_kinematics(figure, fw.q.data(), fw.v.data(), w);
+    }
+  }
 }
 
 void figure_dynamics(const RateContext& c) {
@@ -67,8 +198,12 @@ void figure_dynamics(const RateContext& c) {
     const FigureModel& figure = c.model.figures[f].model;
     const Real* v = v_of(figure, c.v);
     joint_damping(figure, v, fw.tau.data());
-    // Gravity as the base's acceleration, at its value of the moment (tracks may drive it).
-    forward_dynamics(figure, q_of(figure, c.q), v, fw.tau.data(), {}, c.ws.drive.gravity,
+    // Gravity as the base's acceleration, at its value of the moment (tracks may drive it); the
+    // contact stage's forces when obstacles are present (figure_contact_forces ran before).
+    const std::span<const ForceVector> external =
+        figure_contacts_present(c.model) ? std::span<const ForceVector>(fw.contact_forces[f])
+                                         : std::span<const ForceVector>();
+    forward_dynamics(figure, q_of(figure, c.q), v, fw.tau.data(), external, c.ws.drive.gravity,
                      fw.each[f], c.v_dot.data() + figure.state_v_offset);
   }
 }
@@ -107,6 +242,15 @@ void measure_figures(const Model& model, const State& state, Workspace& ws, Fram
       const Vec3 centre = fw.world[i].r + fw.world[i].E.transpose() * I.c;
       out.potential -= I.m * ws.drive.gravity.dot(centre);
     }
+    out.elastic = 0;
+    out.contacts = 0;
+    if (!figure_contacts_present(model)) continue;
+    const FigureDef& def = model.scene.figures[f];
+    for_each_contact(figure, def, w, fw.world, ws.drive.obstacles,
+                     [&](int, const ContactPoint& contact, const ObstacleModel&) {
+                       out.elastic += 0.5 * def.contact_stiffness * contact.depth * contact.depth;
+                       ++out.contacts;
+                     });
   }
 }
 

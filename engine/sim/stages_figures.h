@@ -1,7 +1,8 @@
 // Articulated figures' part of the step (figure/, ch. 15): each figure's accelerations by the
 // articulated-body method with its joint damping among the rates (sec. 15.2), q-dot from v, unit
-// quaternions after the step, the kinetic and potential energies the stability guard watches,
-// and the segments' shapes to draw. Rows of the subsystem table (sim/subsystems.cpp).
+// quaternions after the step, contacts with obstacles in the book's two stages (impact, then
+// mild spring-dampers: sec. 15.3), the energies the stability guard watches, and the segments'
+// shapes to draw. Rows of the subsystem table (sim/subsystems.cpp).
 #pragma once
 
 #include "sim/subsystem.h"
@@ -10,6 +11,11 @@ namespace pbm::stages {
 
 bool figures_present(const Model& model);
 void size_figures(const Model& model, Workspace& ws);
+// Contacts with obstacles (sec. 15.3): the contact stage's spring-dampers among the rates, the
+// impact stage after the step.
+bool figure_contacts_present(const Model& model);
+void figure_contact_forces(const RateContext& c);  // contact_forces
+void figure_impacts(const SubstepContext& c);      // impacts: (15.1)-(15.8)
 void figure_dynamics(const RateContext& c);    // dynamics: sec. 15.2, the articulated-body method
 void figure_kinematics(const RateContext& c);  // kinematics: q-dot from v
 void figure_kinematic_rates(const Model& model, const VecX& q, const VecX& v, VecX& q_dot);

@@ -11,6 +11,7 @@
 #include "constrain/constraint_forces.h"
 #include "constrain/constraint_projection.h"
 #include "deform/body_workspace.h"
+#include "figure/figure_impact.h"
 #include "figure/figure_workspace.h"
 #include "integrate/integrators.h"
 #include "sim/frame_stats.h"
@@ -28,11 +29,16 @@ struct BodyReach {
 };
 
 // The figures' scratch (sim/stages_figures.h): each figure's recursions, the joint forces of the
-// one being evaluated, and its segments' world transforms.
+// one being evaluated, its segments' world transforms, the contact stage's forces on each segment
+// and the impact stage's system.
 struct FiguresWorkspace {
   std::vector<FigureWorkspace> each;
   VecX tau;
   std::vector<SpatialTransform> world;
+  std::vector<std::vector<ForceVector>> contact_forces;  // per figure, per segment (own frame)
+  std::vector<ImpactContact> impacts;
+  ImpactWorkspace impact;
+  VecX q, v;  // one figure's slices, for resolve_impact
 };
 
 struct Workspace {

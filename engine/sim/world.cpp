@@ -244,6 +244,7 @@ void measure_state(const World& world, const Inputs& inputs, const State& state,
   for (const FigureFrameStats& figure : stats.figures) {
     stats.kinetic += figure.kinetic;
     stats.potential += figure.potential;
+    stats.elastic += figure.elastic;
   }
   if (world.has(SubsystemId::constraints)) stats.elastic += stats.hinge_energy;
 }
