@@ -37,7 +37,23 @@ std::string state_json_line(const Model& model, const State& state, long frame) 
     append_array(out, state.v.segment(body.v_offset, body.v_size));
     out += '}';
   }
-  out += "]}\n";
+  out += ']';
+  // Figures (ch. 15): their joint coordinates and velocities, left out of scenes without any so
+  // that those files stay as they were.
+  if (!model.figures.empty()) {
+    out += ",\"figures\":[";
+    for (std::size_t f = 0; f < model.figures.size(); ++f) {
+      const FigureModel& figure = model.figures[f].model;
+      if (f) out += ',';
+      out += "{\"name\":" + nlohmann::json(figure.name).dump() + ",\"q\":";
+      append_array(out, state.q.segment(figure.state_q_offset, figure.n_q));
+      out += ",\"v\":";
+      append_array(out, state.v.segment(figure.state_v_offset, figure.n_v));
+      out += '}';
+    }
+    out += ']';
+  }
+  out += "}\n";
   return out;
 }
 
@@ -90,6 +106,18 @@ std::string frame_stats_json(const World& world, const FrameStats& s, long frame
                       {"elastic_energy", bs.elastic}});
   }
   j["bodies"] = bodies;
+  if (!model.figures.empty()) {
+    nlohmann::json figures = nlohmann::json::array();
+    for (std::size_t f = 0; f < s.figures.size(); ++f) {
+      const FigureFrameStats& fs = s.figures[f];
+      figures.push_back({{"name", model.figures[f].model.name},
+                         {"kinetic_energy", fs.kinetic},
+                         {"potential_energy", fs.potential},
+                         {"elastic_energy", fs.elastic},
+                         {"contacts", fs.contacts}});
+    }
+    j["figures"] = figures;
+  }
   return j.dump();
 }
 

@@ -67,7 +67,7 @@ std::string ball(const std::string& eps1, const std::string& w1, const std::stri
 
 TEST(Cli, ValidateAcceptsEveryShippedScene) {
   for (const char* name : {"jello-ball", "rugby-ball", "morphing-shell", "interactive", "snowman",
-                           "dragonfly", "seesaw"}) {
+                           "dragonfly", "seesaw", "pendulum-chain"}) {
     const Result r = pbm("validate " + scene(name));
     EXPECT_EQ(r.code, 0) << name << ": " << r.output;
   }
@@ -79,7 +79,8 @@ TEST(Cli, TwoRunsOfEachSceneWriteIdenticalStates) {
   for (const auto& [name, frames] : {std::pair{"jello-ball", 40},
                                      {"rugby-ball", 30},
                                      {"morphing-shell", 30},
-                                     {"interactive", 2}}) {
+                                     {"interactive", 2},
+                                     {"pendulum-chain", 30}}) {
     const fs::path a = dir / (std::string(name) + "_a.jsonl");
     const fs::path b = dir / (std::string(name) + "_b.jsonl");
     const std::string common = "simulate " + scene(name) + " --frames " + std::to_string(frames);
@@ -102,6 +103,17 @@ TEST(Cli, WritesStatsAndAMeshSequence) {
                           "\"elastic_energy\"", "\"min_obstacle_distance\"", "\"q_s\""}) {
     EXPECT_NE(stats.find(key), std::string::npos) << key;
   }
+  // A figure's energies and contacts, and its joint coordinates in the states.
+  const Result chain =
+      pbm("simulate " + scene("pendulum-chain") + " --frames 3 --stats " +
+          (dir / "chain.json").string() + " --out " + (dir / "chain.jsonl").string());
+  ASSERT_EQ(chain.code, 0) << chain.output;
+  const std::string chain_stats = read(dir / "chain.json");
+  for (const char* key : {"\"figures\"", "\"potential_energy\"", "\"contacts\""}) {
+    EXPECT_NE(chain_stats.find(key), std::string::npos) << key;
+  }
+  EXPECT_NE(read(dir / "chain.jsonl").find("\"figures\":[{\"name\":\"chain\",\"q\":["),
+            std::string::npos);
   for (int f = 0; f <= 3; ++f) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%05d.ply", f);
@@ -148,6 +160,14 @@ TEST(Cli, BadInputExitsTwoNamingFileAndField) {
        "[{\"name\": \"neck\", \"a\": {\"body\": \"head\", \"node\": 0}, "
        "\"b\": {\"world\": [0, 0, 1]}}]}",
        "constraints[0].a.body: unknown body 'head'"},
+      {"figure-cycle.json",
+       "{\"figures\": [{\"segments\": [{\"name\": \"a\", \"parent\": \"b\"}, "
+       "{\"name\": \"b\", \"parent\": \"a\"}]}]}",
+       "figures[0].segments[0].parent: the parents form a cycle"},
+      {"figure-axis.json", "{\"figures\": [{\"segments\": [{\"joint\": {\"axis\": [0, 0, 0]}}]}]}",
+       "figures[0].segments[0].joint.axis: must be a nonzero vector"},
+      {"figure-massless.json", "{\"figures\": [{\"segments\": [{\"density\": 0}]}]}",
+       "figures[0].segments[0].density: must be > 0"},
       // Hostile files of a few KB (scenes/README.md, "Limits").
       {"deep.json", "{\"bodies\": " + std::string(10000, '[') + std::string(10000, ']') + "}",
        "nested deeper than 32"},
