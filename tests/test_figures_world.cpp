@@ -179,6 +179,17 @@ TEST(FiguresWorld, TheSnapshotDrawsEverySegmentWhereItIs) {
   EXPECT_NEAR(p.center.z(), 2.0f, 1e-6f);
   EXPECT_NEAR(std::abs(p.rotation.col(2).x()), 1.0f, 1e-6f);
   EXPECT_FALSE(snap.focus.empty());
+  // The overlays: the revolute joints' axes (along y, the first at the pivot), a dot at the
+  // spherical joint.
+  ASSERT_EQ(snap.lines.size(), 1u);
+  ASSERT_EQ(snap.lines[0].points.size(), 4u);
+  EXPECT_EQ(snap.lines[0].layer, draw::Layer::overlay);
+  const draw::Vec3f middle = 0.5f * (snap.lines[0].points[0] + snap.lines[0].points[1]);
+  EXPECT_LT((middle - draw::Vec3f(0, 0, 2)).norm(), 1e-6f);
+  EXPECT_NEAR(std::abs((snap.lines[0].points[1] - snap.lines[0].points[0]).normalized().y()), 1.0f,
+              1e-6f);
+  ASSERT_EQ(snap.points.size(), 1u);
+  EXPECT_EQ(snap.points[0].positions.size(), 1u);
 }
 
 TEST(FiguresWorld, AFigureGoneNaNIsNamed) {

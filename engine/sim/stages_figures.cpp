@@ -92,6 +92,50 @@ Vec3 contact_force(const FigureDef& def, const ContactPoint& c, Real mu) {
   return f_n * c.normal + f_t;
 }
 
+// The editor's overlays (drawn on demand): each joint's axes where it sits, a dot at each
+// ball-and-socket or welded joint, and the segments' sites.
+void add_joint_overlays(const FigureModel& figure, const FigureDef& def,
+                        const std::vector<SpatialTransform>& world, draw::Snapshot& snap) {
+  constexpr float kAxisLength = 0.12f;  // [m] each way from the joint
+  const draw::Vec3f axis_color{0.95f, 0.8f, 0.2f}, site_color{0.9f, 0.3f, 0.8f};
+  draw::Lines axes{.layer = draw::Layer::overlay};
+  draw::Points dots{.size = 6, .layer = draw::Layer::overlay};
+  for (int i = 0; i < figure.size(); ++i) {
+    const SegmentModel& s = figure.segments[i];
+    const SpatialTransform joint = s.parent >= 0 ? s.X_tree * world[s.parent] : s.X_tree;
+    const Vec3 at = joint.r;
+    const auto axis = [&](const Vec3& a) {
+      const Vec3 d = joint.E.transpose() * a * kAxisLength;
+      axes.points.push_back((at - d).cast<float>());
+      axes.points.push_back((at + d).cast<float>());
+      axes.colors.push_back(axis_color);
+    };
+    switch (s.joint.kind) {
+      case JointKind::revolute:
+      case JointKind::prismatic:
+        axis(s.joint.axis);
+        break;
+      case JointKind::universal:
+        axis(s.joint.axis);
+        axis(joint.E * world[i].E.transpose() * s.joint.axis2);  // on the child, in joint axes
+        break;
+      case JointKind::spherical:
+      case JointKind::fixed:
+        dots.positions.push_back(at.cast<float>());
+        dots.colors.push_back(axis_color);
+        break;
+      case JointKind::free:
+        break;
+    }
+    for (const SiteDef& site : def.segments[i].sites) {
+      dots.positions.push_back((world[i].r + world[i].E.transpose() * site.position).cast<float>());
+      dots.colors.push_back(site_color);
+    }
+  }
+  if (!axes.points.empty()) snap.lines.push_back(std::move(axes));
+  if (!dots.positions.empty()) snap.points.push_back(std::move(dots));
+}
+
 }  // namespace
 
 bool figures_present(const Model& model) {
@@ -294,6 +338,7 @@ void add_figure_drawables(const Model& model, const Inputs& inputs, const State&
       snap.focus.add(p.center - draw::Vec3f::Constant(reach));
       snap.focus.add(p.center + draw::Vec3f::Constant(reach));
     }
+    add_joint_overlays(figure, def, fw.world, snap);
   }
 }
 
