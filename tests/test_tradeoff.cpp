@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "plot_png.h"
+#include "scene/scene_json.h"
 #include "scene_builders.h"
 #include "sim/model.h"
 #include "sim/tradeoff.h"
@@ -33,6 +34,45 @@ const TradeoffPoint& find(const TradeoffReport& r, IntegratorKind kind, Real dt)
   }
   ADD_FAILURE() << "no point at dt " << dt;
   return r.points.front();
+}
+
+// A figure's segments are measured like bodies' centres: a 3-link chain converges at Euler's
+// first order as dt halves, and RK4 at the same step is far closer.
+TEST(Tradeoff, AFiguresSegmentsConvergeAsTheIntegratorsOrderSays) {
+  const Scene scene = parse_scene(
+      R"({"solver": {"dt": 0.004, "fps": 25}, "figures": [{"segments": [
+          {"name": "a", "joint": {"axis": [0, 1, 0], "position": [0, 0, 2], "q0": [1.2]},
+           "shape": {"kind": "capsule", "size": [0.04, 0.04, 0.2], "center": [0, 0, -0.25]}},
+          {"name": "b", "parent": "a", "joint": {"axis": [0, 1, 0], "position": [0, 0, -0.5]},
+           "shape": {"kind": "capsule", "size": [0.04, 0.04, 0.2], "center": [0, 0, -0.25]}},
+          {"name": "c", "parent": "b", "joint": {"kind": "spherical", "position": [0, 0, -0.5],
+           "v0": [0, 0, 2]},
+           "shape": {"kind": "box", "size": [0.1, 0.05, 0.05], "center": [0, 0, -0.1]}}]}]})",
+      "chain.json");
+  TradeoffOptions options;
+  options.seconds = 1;
+  options.reference_tolerance = 1e-10;
+  options.knobs.dt = {0.004, 0.002, 0.001};
+  options.knobs.integrators = {IntegratorKind::euler, IntegratorKind::rk4};
+  options.knobs.tolerances = {1e-6};
+  options.knobs.resolutions = {1.0};
+  auto progress = [](int, int, const std::string&) {};
+  const TradeoffReport r = run_tradeoff(scene, options, progress);
+  for (const TradeoffPoint& p : r.points) ASSERT_TRUE(p.ok) << p.message;
+  for (Real dt : {0.004, 0.002}) {
+    const TradeoffPoint& coarse = find(r, IntegratorKind::euler, dt);
+    const TradeoffPoint& fine = find(r, IntegratorKind::euler, dt / 2);
+    const Real order = std::log2(coarse.centre_error / fine.centre_error);
+    std::printf("figure, euler dt %.3f -> %.4f: segments %.3e -> %.3e m, order %.2f; rk4 %.3e m\n",
+                dt, dt / 2, coarse.centre_error, fine.centre_error, order,
+                find(r, IntegratorKind::rk4, dt).centre_error);
+    EXPECT_NEAR(order, 1.0, 0.3);
+    EXPECT_LT(find(r, IntegratorKind::rk4, dt).centre_error, 1e-3 * coarse.centre_error);
+  }
+  // RK4's fourth order (the reference, rk45 at 1e-10, is far below both).
+  const Real rk4_order = std::log2(find(r, IntegratorKind::rk4, 0.004).centre_error /
+                                   find(r, IntegratorKind::rk4, 0.002).centre_error);
+  EXPECT_NEAR(rk4_order, 4.0, 0.5);
 }
 
 TEST(Tradeoff, ErrorsFollowTheIntegratorsOrderAndCostCountsTheSubsteps) {

@@ -53,6 +53,14 @@ Trajectory record(const Scene& scene, Real seconds, const std::atomic<bool>* can
         shapes.push_back(s.bodies[b].q_s);
         count += sim.ws.bodies[b].x.size();
       }
+      // Every figure's segment origins join the centres (measure_state leaves each figure's
+      // kinematics of the frame's end in the workspace): a joint angle's error shows there as
+      // the distance it moves its segments.
+      for (std::size_t k = 0; k < sim.model.figures.size(); ++k) {
+        std::vector<SpatialTransform> world;
+        segment_world_transforms(sim.model.figures[k].model, sim.ws.figures->each[k], world);
+        for (const SpatialTransform& X : world) centres.push_back(X.r);
+      }
       // measure_state leaves the bodies' kinematics of the frame's end in the workspace.
       VecX nodes(3 * static_cast<Eigen::Index>(count));
       Eigen::Index at = 0;
@@ -88,6 +96,8 @@ void compare(const Trajectory& run, const Trajectory& ref, TradeoffPoint& point)
     for (std::size_t b = 0; b < run.centres[f].size() && b < ref.centres[f].size(); ++b) {
       point.centre_error =
           std::max(point.centre_error, (run.centres[f][b] - ref.centres[f][b]).norm());
+      // Bodies' centres come first; the figures' segments after them have no shape.
+      if (b >= run.shapes[f].size() || b >= ref.shapes[f].size()) continue;
       if (run.shapes[f][b].size() == ref.shapes[f][b].size() && run.shapes[f][b].size() > 0) {
         point.shape_error = std::max(point.shape_error,
                                      (run.shapes[f][b] - ref.shapes[f][b]).cwiseAbs().maxCoeff());

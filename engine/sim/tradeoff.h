@@ -2,8 +2,8 @@
 // converged reference run of a scene, then a sweep of its knobs (substep, integrator, rk45
 // tolerance, mesh resolution), each run's error against the reference at matched frame times
 // and its cost. `pbm bench tradeoff` writes it as CSV and a plot; the studio's trade panel shows
-// the same numbers for the open scene. Later subsystems add their error columns here (figure
-// joint angles, liquid volume).
+// the same numbers for the open scene. Figures' segments count as centres; later subsystems add
+// their error columns here (liquid volume).
 #pragma once
 
 #include <atomic>
@@ -35,7 +35,7 @@ struct TradeoffPoint {
   std::string message;      // why the run failed
   double wall_seconds = 0;  // stepping only (FrameStats::wall_seconds)
   long substeps = 0, evaluations = 0, retries = 0;
-  Real centre_error = 0;          // |c - c_ref| [m]
+  Real centre_error = 0;          // |c - c_ref| [m], bodies' centres and figures' segments
   Real shape_error = 0;           // |q_s - q_s,ref| (max norm)
   Real node_rms = -1;             // RMS of node position differences [m]; -1: other node count
   Real constraint_violation = 0;  // the run's own max |C| [m]
