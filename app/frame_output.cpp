@@ -22,6 +22,16 @@ void append_array(std::string& out, const Eigen::Ref<const VecX>& x) {
   out += ']';
 }
 
+// {"name":..., "q":[...], "v":[...]}: a body's or a figure's part of a state line.
+void append_part(std::string& out, const std::string& name, const Eigen::Ref<const VecX>& q,
+                 const Eigen::Ref<const VecX>& v) {
+  out += "{\"name\":" + nlohmann::json(name).dump() + ",\"q\":";
+  append_array(out, q);
+  out += ",\"v\":";
+  append_array(out, v);
+  out += '}';
+}
+
 }  // namespace
 
 std::string state_json_line(const Model& model, const State& state, long frame) {
@@ -31,11 +41,8 @@ std::string state_json_line(const Model& model, const State& state, long frame) 
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     const BodyModel& body = model.bodies[b];
     if (b) out += ',';
-    out += "{\"name\":" + nlohmann::json(body.name).dump() + ",\"q\":";
-    append_array(out, state.q.segment(body.q_offset, body.q_size));
-    out += ",\"v\":";
-    append_array(out, state.v.segment(body.v_offset, body.v_size));
-    out += '}';
+    append_part(out, body.name, state.q.segment(body.q_offset, body.q_size),
+                state.v.segment(body.v_offset, body.v_size));
   }
   out += ']';
   // Figures (ch. 15): their joint coordinates and velocities, left out of scenes without any so
@@ -45,11 +52,8 @@ std::string state_json_line(const Model& model, const State& state, long frame) 
     for (std::size_t f = 0; f < model.figures.size(); ++f) {
       const FigureModel& figure = model.figures[f].model;
       if (f) out += ',';
-      out += "{\"name\":" + nlohmann::json(figure.name).dump() + ",\"q\":";
-      append_array(out, state.q.segment(figure.state_q_offset, figure.n_q));
-      out += ",\"v\":";
-      append_array(out, state.v.segment(figure.state_v_offset, figure.n_v));
-      out += '}';
+      append_part(out, figure.name, state.q.segment(figure.state_q_offset, figure.n_q),
+                  state.v.segment(figure.state_v_offset, figure.n_v));
     }
     out += ']';
   }
