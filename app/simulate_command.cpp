@@ -74,8 +74,12 @@ int run_validate(const std::string& scene_path, bool materials) {
     const Model model = build_model(scene);
     int nodes = 0;
     for (const BodyModel& b : model.bodies) nodes += b.n_nodes();
-    spdlog::info("{}: valid ({} bodies, {} nodes, {} obstacles, {} tracks)", scene_path,
-                 model.bodies.size(), nodes, model.obstacles.size(), model.tracks.size());
+    int segments = 0;
+    for (const CompiledFigure& figure : model.figures) segments += figure.model.size();
+    spdlog::info(
+        "{}: valid ({} bodies, {} nodes, {} figures, {} segments, {} obstacles, {} tracks)",
+        scene_path, model.bodies.size(), nodes, model.figures.size(), segments,
+        model.obstacles.size(), model.tracks.size());
     if (materials) {
       std::printf("%-16s %7s %12s %10s %12s %18s %18s %12s\n", "body", "nodes", "mass_kg",
                   "area_m2", "kg_per_m2", "contact_N_per_m3", "book_N_per_m3", "dt_euler_s");
