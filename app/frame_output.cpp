@@ -114,11 +114,31 @@ std::string frame_stats_json(const World& world, const FrameStats& s, long frame
     nlohmann::json figures = nlohmann::json::array();
     for (std::size_t f = 0; f < s.figures.size(); ++f) {
       const FigureFrameStats& fs = s.figures[f];
-      figures.push_back({{"name", model.figures[f].model.name},
-                         {"kinetic_energy", fs.kinetic},
-                         {"potential_energy", fs.potential},
-                         {"elastic_energy", fs.elastic},
-                         {"contacts", fs.contacts}});
+      const CompiledFigure& compiled = model.figures[f];
+      nlohmann::json figure = {{"name", compiled.model.name},
+                               {"kinetic_energy", fs.kinetic},
+                               {"potential_energy", fs.potential},
+                               {"elastic_energy", fs.elastic},
+                               {"contacts", fs.contacts}};
+      // The controllers' plot of figs. 15.7, 15.8: desired, reference model and actual position
+      // per controlled DOF, with the actuator's output.
+      if (!compiled.controllers.empty()) {
+        figure["actuator_work"] = fs.work;
+        nlohmann::json controllers = nlohmann::json::array();
+        for (std::size_t k = 0; k < compiled.controllers.size(); ++k) {
+          const JointController& c = compiled.controllers[k];
+          const ControlSample& sample = fs.controllers[k];
+          controllers.push_back({{"joint", c.def.joint},
+                                 {"dof", c.def.dof},
+                                 {"desired", sample.desired},
+                                 {"reference", sample.reference},
+                                 {"actual", sample.actual},
+                                 {"output", sample.output},
+                                 {"saturated", sample.saturated}});
+        }
+        figure["controllers"] = std::move(controllers);
+      }
+      figures.push_back(std::move(figure));
     }
     j["figures"] = figures;
   }

@@ -104,6 +104,14 @@ inline json full_scene() {
         {"parent": "base", "joint": {"kind": "prismatic", "axis": [1, 0, 0],
                                      "orientation": [0, 0, 0, 1]}},
         {"parent": "base", "joint": {"kind": "fixed", "position": [0.2, 0, 0]}}
+      ],
+       "controllers": [
+        {"joint": "upper", "keys": [[0, 0.3], [1, 0.8]], "settling_time": 0.2, "alpha": 5,
+         "beta": 1, "max_output": 40},
+        {"kind": "pd", "joint": "segment3", "dof": 1, "interpolation": "linear",
+         "keys": [[0, 0.2]], "kp": 30, "kd": 2},
+        {"kind": "stable_pd", "joint": "segment4", "keys": [[0.5, 0.1], [2, -0.1]],
+         "interpolation": "step", "kp": 1e5, "kd": 100}
       ]}
     ]
   })");
@@ -271,6 +279,26 @@ inline void expect_same_scene(const Scene& a, const Scene& b) {
         EXPECT_EQ(x.sites[k].position, y.sites[k].position);
         EXPECT_EQ(x.sites[k].orientation, y.sites[k].orientation);
       }
+    }
+    ASSERT_EQ(a.figures[f].controllers.size(), b.figures[f].controllers.size());
+    for (std::size_t k = 0; k < a.figures[f].controllers.size(); ++k) {
+      const ControllerDef& x = a.figures[f].controllers[k];
+      const ControllerDef& y = b.figures[f].controllers[k];
+      EXPECT_EQ(x.kind, y.kind);
+      EXPECT_EQ(x.joint, y.joint);
+      EXPECT_EQ(x.dof, y.dof);
+      EXPECT_EQ(x.interpolation, y.interpolation);
+      ASSERT_EQ(x.keys.size(), y.keys.size());
+      for (std::size_t j = 0; j < x.keys.size(); ++j) {
+        EXPECT_EQ(x.keys[j].time, y.keys[j].time);
+        EXPECT_EQ(x.keys[j].value, y.keys[j].value);
+      }
+      EXPECT_EQ(x.settling_time, y.settling_time);
+      EXPECT_EQ(x.alpha, y.alpha);
+      EXPECT_EQ(x.beta, y.beta);
+      EXPECT_EQ(x.kp, y.kp);
+      EXPECT_EQ(x.kd, y.kd);
+      EXPECT_EQ(x.max_output, y.max_output);
     }
   }
 }

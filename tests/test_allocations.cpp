@@ -125,5 +125,10 @@ TEST(Allocations, PendulumChainStepsWithoutAllocating) {
   EXPECT_EQ(allocations_in_frames("pendulum-chain", 2, 30), 0);
 }
 
+// Controlled figures: MRAC's state rates and torques, the frame's controller samples.
+TEST(Allocations, WaistUnderMracStepsWithoutAllocating) {
+  EXPECT_EQ(allocations_in_frames("waist-step", 2, 20), 0);
+}
+
 }  // namespace
 }  // namespace pbm

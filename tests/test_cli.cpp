@@ -66,8 +66,9 @@ std::string ball(const std::string& eps1, const std::string& w1, const std::stri
 }
 
 TEST(Cli, ValidateAcceptsEveryShippedScene) {
-  for (const char* name : {"jello-ball", "rugby-ball", "morphing-shell", "interactive", "snowman",
-                           "dragonfly", "seesaw", "pendulum-chain"}) {
+  for (const char* name :
+       {"jello-ball", "rugby-ball", "morphing-shell", "interactive", "snowman", "dragonfly",
+        "seesaw", "pendulum-chain", "rope-drop", "waist-smooth", "waist-step"}) {
     const Result r = pbm("validate " + scene(name));
     EXPECT_EQ(r.code, 0) << name << ": " << r.output;
   }
@@ -80,7 +81,8 @@ TEST(Cli, TwoRunsOfEachSceneWriteIdenticalStates) {
                                      {"rugby-ball", 30},
                                      {"morphing-shell", 30},
                                      {"interactive", 2},
-                                     {"pendulum-chain", 30}}) {
+                                     {"pendulum-chain", 30},
+                                     {"waist-step", 30}}) {
     const fs::path a = dir / (std::string(name) + "_a.jsonl");
     const fs::path b = dir / (std::string(name) + "_b.jsonl");
     const std::string common = "simulate " + scene(name) + " --frames " + std::to_string(frames);
@@ -114,6 +116,16 @@ TEST(Cli, WritesStatsAndAMeshSequence) {
   }
   EXPECT_NE(read(dir / "chain.jsonl").find("\"figures\":[{\"name\":\"chain\",\"q\":["),
             std::string::npos);
+  // A controlled figure's plot (figs. 15.7, 15.8): desired, reference model and actual.
+  ASSERT_EQ(pbm("simulate " + scene("waist-step") + " --frames 3 --stats " +
+                (dir / "waist.json").string())
+                .code,
+            0);
+  const std::string waist = read(dir / "waist.json");
+  for (const char* key : {"\"controllers\"", "\"desired\"", "\"reference\"", "\"actual\"",
+                          "\"output\"", "\"saturated\"", "\"actuator_work\""}) {
+    EXPECT_NE(waist.find(key), std::string::npos) << key;
+  }
   for (int f = 0; f <= 3; ++f) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%05d.ply", f);

@@ -91,6 +91,21 @@ Scene figure_chain(int n, IntegratorKind integrator, Real mass, Real damping = 0
   return s;
 }
 
+// A 5-link chain of 1 kg links with a controller on every joint holding 0.5 rad, the
+// controller's settings changed by `change`.
+template <typename Change>
+Scene controlled_chain(IntegratorKind integrator, Change&& change) {
+  Scene s = figure_chain(5, integrator, 1);
+  for (const SegmentDef& seg : s.figures[0].segments) {
+    ControllerDef d;
+    d.joint = seg.name;
+    d.keys = {{0, 0.5}};
+    change(d);
+    s.figures[0].controllers.push_back(d);
+  }
+  return s;
+}
+
 std::vector<Cell> cells() {
   std::vector<Cell> c;
   for (Real w : {1e-6, 1e6}) {
@@ -232,6 +247,31 @@ std::vector<Cell> cells() {
                [] { return figure_chain(5, IntegratorKind::euler, 1, 1e6); }});
   c.push_back(
       {"figure: segment mass 1e-6 kg", [] { return figure_chain(5, IntegratorKind::rk4, 1e-6); }});
+  // Joint controllers (sec. 15.4) on every joint of the chain, driving it to hang at 0.5 rad.
+  c.push_back({"figure: MRAC t_s 0.01 s on every joint, rk4", [] {
+                 return controlled_chain(IntegratorKind::rk4,
+                                         [](ControllerDef& d) { d.settling_time = 0.01; });
+               }});
+  c.push_back({"figure: MRAC limited to 1e-3 N m, rk4", [] {
+                 return controlled_chain(IntegratorKind::rk4,
+                                         [](ControllerDef& d) { d.max_output = 1e-3; });
+               }});
+  // The explicit servo at gains 1000 times lower already needs the substep shortened; at the
+  // stable servo's gains it would need 1e-7 s.
+  c.push_back({"figure: explicit PD kp 1e6, kd 1e3, euler", [] {
+                 return controlled_chain(IntegratorKind::euler, [](ControllerDef& d) {
+                   d.kind = ControllerKind::pd;
+                   d.kp = 1e6;
+                   d.kd = 1e3;
+                 });
+               }});
+  c.push_back({"figure: stable PD kp 1e9, kd 1e6, euler", [] {
+                 return controlled_chain(IntegratorKind::euler, [](ControllerDef& d) {
+                   d.kind = ControllerKind::stable_pd;
+                   d.kp = 1e9;
+                   d.kd = 1e6;
+                 });
+               }});
   return c;
 }
 

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "figure/figure_build.h"
 #include "scene_json_support.h"
 
 namespace pbm::scene_test {
@@ -42,6 +43,31 @@ TEST(SceneFiguresJson, SegmentsJointsShapesAndSitesWithDefaults) {
   EXPECT_EQ(arm.segments[5].joint.kind, JointKind::fixed);
   EXPECT_EQ(arm.segments[5].shape.kind, SegmentShapeKind::box);
   EXPECT_EQ(arm.segments[5].density, 1000);
+  ASSERT_EQ(arm.controllers.size(), 3u);
+  const ControllerDef& mrac = arm.controllers[0];
+  EXPECT_EQ(mrac.kind, ControllerKind::mrac);
+  EXPECT_EQ(mrac.interpolation, Interpolation::smooth);  // the default
+  EXPECT_EQ(mrac.keys.size(), 2u);
+  EXPECT_EQ(mrac.settling_time, 0.2);
+  EXPECT_EQ(mrac.max_output, 40);
+  EXPECT_EQ(arm.controllers[1].dof, 1);
+  EXPECT_EQ(arm.controllers[1].kp, 30);
+  EXPECT_FALSE(arm.controllers[1].max_output);
+  EXPECT_EQ(arm.controllers[2].kind, ControllerKind::stable_pd);
+}
+
+TEST(SceneFiguresJson, ControllersAreLaidOutInTheState) {
+  Scene s = parse_scene(full_scene().dump(), kFile);
+  const CompiledFigure f = build_figure_model(s.figures[0], kFile, "figures[0]");
+  ASSERT_EQ(f.controllers.size(), 3u);
+  // The MRAC of 'upper' (revolute, after the free base's 7 q and 6 v), the universal's second
+  // DOF, the prismatic joint.
+  EXPECT_EQ(f.controllers[0].q_index, 7);
+  EXPECT_EQ(f.controllers[0].v_index, 6);
+  EXPECT_EQ(f.controllers[0].state_offset, 1);  // after the actuators' work
+  EXPECT_EQ(f.controllers[1].v_index, f.model.segments[3].v_offset + 1);
+  EXPECT_EQ(f.controllers[1].state_offset, -1);
+  EXPECT_EQ(f.n_control, 1 + kMracStateSize);
 }
 
 TEST(SceneFiguresJson, ASceneMayHoldOnlyFigures) {
@@ -106,6 +132,42 @@ TEST(SceneFiguresJsonErrors, ErrorsNameTheirPath) {
                "figures[0].contact_stiffness", "must be > 0");
   expect_error(json{{"figures", {{{"segments", json::array()}}}}}, "figures[0].segments",
                "at least one segment");
+  // Controllers: each names a DOF of a single-axis joint once, with gains in range.
+  const json two = {{{"name", "a"}, {"joint", joint}},
+                    {{"name", "b"}, {"parent", "a"}, {"joint", {{"kind", "spherical"}}}}};
+  const std::vector<std::tuple<json, std::string, std::string>> controllers = {
+      {{{"joint", "c"}, {"keys", {{0, 1}}}}, "figures[0].controllers[0].joint", "names no segment"},
+      {{{"joint", "b"}, {"keys", {{0, 1}}}}, "figures[0].controllers[0].joint", "single axis"},
+      {{{"joint", "a"}, {"dof", 1}, {"keys", {{0, 1}}}},
+       "figures[0].controllers[0].dof",
+       "must be in [0, 0]"},
+      {{{"joint", "a"}, {"keys", json::array()}},
+       "figures[0].controllers[0].keys",
+       "at least one key"},
+      {{{"joint", "a"}, {"keys", {{1, 1}, {0, 2}}}},
+       "figures[0].controllers[0].keys[1]",
+       "must be greater than the previous"},
+      {{{"joint", "a"}, {"keys", {{0, 1}}}, {"kp", 3}},
+       "figures[0].controllers[0].kp",
+       "not valid for a mrac controller"},
+      {{{"joint", "a"}, {"kind", "pd"}, {"keys", {{0, 1}}}},
+       "figures[0].controllers[0].kp",
+       "needs kp or kd > 0"},
+      {{{"joint", "a"}, {"keys", {{0, 1}}}, {"settling_time", 0}},
+       "figures[0].controllers[0].settling_time",
+       "must be > 0"},
+      {{{"joint", "a"}, {"keys", {{0, 1}}}, {"max_output", -1}},
+       "figures[0].controllers[0].max_output",
+       "must be > 0"},
+      {{{"keys", {{0, 1}}}}, "figures[0].controllers[0].joint", "required"},
+  };
+  for (const auto& [controller, path, message] : controllers) {
+    expect_error(json{{"figures", {{{"segments", two}, {"controllers", {controller}}}}}}, path,
+                 message);
+  }
+  const json twice = {{"joint", "a"}, {"keys", {{0, 1}}}};
+  expect_error(json{{"figures", {{{"segments", two}, {"controllers", {twice, twice}}}}}},
+               "figures[0].controllers[1].dof", "already has a controller");
   expect_error(json{{"figures",
                      {{{"name", "x"}, {"segments", {json::object()}}},
                       {{"name", "x"}, {"segments", {json::object()}}}}}},

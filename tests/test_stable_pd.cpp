@@ -48,8 +48,8 @@ ServoRun run(Real kp, Real kd, Real dt, bool stable) {
   ServoRun r;
   for (int step = 0; step * dt < 2.0; ++step) {
     if (stable) {
-      stable_pd_accelerations(figure, q, v, zero, kGravity, Kp, Kd, target, zero, dt, ws, pd, qdd,
-                              tau);
+      stable_pd_accelerations(figure, q, v, zero, {}, kGravity, Kp, Kd, target, zero, dt, ws, pd,
+                              qdd, tau);
     } else {
       tau = -Kp.cwiseProduct(q - target) - Kd.cwiseProduct(v);
       forward_dynamics(figure, q.data(), v.data(), tau.data(), {}, kGravity, ws, qdd.data());

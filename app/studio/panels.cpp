@@ -595,6 +595,67 @@ void stats(Studio& studio) {
   }
 }
 
+// The controlled DOFs' trajectories over the last seconds (figs. 15.7, 15.8): desired (white),
+// the MRAC reference model (yellow; the desired for PD servos) and actual (cyan), with the
+// actuator's output and whether it is at its limit.
+void controllers_panel(Studio& studio) {
+  const Scene& scene = *studio.status.scene;
+  const FrameStats& f = studio.status.stats;
+  int k = 0;
+  for (std::size_t fi = 0; fi < scene.figures.size(); ++fi) {
+    for (std::size_t ci = 0; ci < scene.figures[fi].controllers.size(); ++ci, ++k) {
+      const ControllerDef& c = scene.figures[fi].controllers[ci];
+      const bool sampled = fi < f.figures.size() && ci < f.figures[fi].controllers.size();
+      const ControlSample now = sampled ? f.figures[fi].controllers[ci] : ControlSample{};
+      ImGui::Text("%s / %s [%d] (%s): u %.4g%s", scene.figures[fi].name.c_str(), c.joint.c_str(),
+                  c.dof, name_of(kControllerKindNames, c.kind), now.output,
+                  now.saturated ? ", at its limit" : "");
+      const ImVec2 origin = ImGui::GetCursorScreenPos();
+      const ImVec2 size(ImGui::GetContentRegionAvail().x, 70);
+      ImDrawList* draw = ImGui::GetWindowDrawList();
+      draw->AddRectFilled(origin, ImVec2(origin.x + size.x, origin.y + size.y),
+                          IM_COL32(25, 25, 30, 255));
+      float lo = 1e30f, hi = -1e30f;
+      for (const StatsSample& p : studio.plot) {
+        if (k >= static_cast<int>(p.control.size())) continue;
+        for (float x : p.control[k]) {
+          lo = std::min(lo, x);
+          hi = std::max(hi, x);
+        }
+      }
+      ImGui::Dummy(size);
+      if (lo > hi || studio.plot.size() < 2) continue;
+      if (hi - lo < 1e-6f) {
+        lo -= 0.5f;
+        hi += 0.5f;
+      }
+      const float n = static_cast<float>(studio.plot.size() - 1);
+      const ImU32 colors[3] = {IM_COL32(235, 235, 235, 255), IM_COL32(235, 200, 60, 255),
+                               IM_COL32(80, 200, 235, 255)};
+      std::vector<ImVec2> line;
+      for (int series = 0; series < 3; ++series) {
+        line.clear();
+        int i = 0;
+        for (const StatsSample& p : studio.plot) {
+          if (k < static_cast<int>(p.control.size())) {
+            const float y = (p.control[k][series] - lo) / (hi - lo);
+            line.emplace_back(origin.x + size.x * static_cast<float>(i) / n,
+                              origin.y + 4 + (size.y - 8) * (1 - y));
+          }
+          ++i;
+        }
+        if (line.size() > 1) {
+          draw->AddPolyline(line.data(), static_cast<int>(line.size()), colors[series], 0, 1.5f);
+        }
+      }
+      char range[64];
+      std::snprintf(range, sizeof range, "%.3g .. %.3g", lo, hi);
+      draw->AddText(ImVec2(origin.x + 4, origin.y + 2), IM_COL32(170, 170, 170, 255), range);
+    }
+  }
+  ImGui::TextDisabled("white: desired; yellow: reference model; cyan: actual");
+}
+
 }  // namespace
 
 void draw_panels(Studio& studio, StudioActions& actions, float width, float height) {
@@ -631,6 +692,19 @@ void draw_panels(Studio& studio, StudioActions& actions, float width, float heig
   ImGui::Begin("Stats", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
   stats(studio);
   ImGui::End();
+  bool controlled = false;
+  if (studio.status.scene) {
+    for (const FigureDef& figure : studio.status.scene->figures) {
+      controlled = controlled || !figure.controllers.empty();
+    }
+  }
+  if (controlled && studio.show_controllers) {
+    ImGui::SetNextWindowPos(ImVec2(width - 730, 20), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(420, 320), ImGuiCond_FirstUseEver);
+    ImGui::Begin("Controllers", &studio.show_controllers);
+    controllers_panel(studio);
+    ImGui::End();
+  }
   if (studio.tradeoff.show) {
     ImGui::SetNextWindowPos(ImVec2(side + 20, 20), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(600, 480), ImGuiCond_FirstUseEver);

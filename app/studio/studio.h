@@ -2,6 +2,7 @@
 // camera and what the panels show. MainWindow owns it; the viewport and the panels use it.
 #pragma once
 
+#include <array>
 #include <deque>
 #include <memory>
 #include <optional>
@@ -27,6 +28,9 @@ struct StatsSample {
   int frame = 0;
   float kinetic = 0, elastic = 0, min_distance = 0;
   float step_ms[static_cast<int>(StepStage::count)] = {};
+  // Every figure's controllers in scene order: desired, reference model, actual (figs. 15.7,
+  // 15.8).
+  std::vector<std::array<float, 3>> control;
 };
 
 // What the UI asks of the window around it (files, history): the panels call these.
@@ -52,8 +56,9 @@ struct Studio {
   Camera camera;
   bool use_scene_camera = true;
   bool camera_initialized = false;
-  bool overlays = false;  // springs, constraints, the wireframe (View menu)
-  int samples = 2;        // viewport MSAA: llvmpipe pays per sample
+  bool overlays = false;         // springs, constraints, the wireframe (View menu)
+  bool show_controllers = true;  // the controllers' plot, when the scene has controllers
+  int samples = 2;               // viewport MSAA: llvmpipe pays per sample
   double speed = 1.0;
   std::deque<StatsSample> plot;  // the last seconds
   int last_plotted_frame = -1;

@@ -112,7 +112,13 @@ void Viewport::refresh() {
     for (int k = 0; k < static_cast<int>(StepStage::count); ++k) {
       p.step_ms[k] = static_cast<float>(1e3 * s.stats.stage_seconds[k]);
     }
-    studio_.plot.push_back(p);
+    for (const FigureFrameStats& figure : s.stats.figures) {
+      for (const ControlSample& c : figure.controllers) {
+        p.control.push_back({static_cast<float>(c.desired), static_cast<float>(c.reference),
+                             static_cast<float>(c.actual)});
+      }
+    }
+    studio_.plot.push_back(std::move(p));
     // About ten seconds of frames: the panel's plots cover "the last seconds".
     const double fps = s.scene ? s.scene->solver.fps : 30.0;
     while (static_cast<double>(studio_.plot.size()) > 10.0 * fps) studio_.plot.pop_front();

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/quaternion.h"
+#include "figure/figure_controllers.h"
 
 namespace pbm {
 namespace {
@@ -178,6 +179,9 @@ CompiledFigure build_figure_model(const FigureDef& def, const std::string& file,
     }
   }
   figure_normalize(figure, out.q0.data());
+  out.controllers = compile_figure_controllers(def, figure, file, path);
+  out.n_control = controller_state_size(out.controllers);
+  explicit_servo_limit(out);
   return out;
 }
 

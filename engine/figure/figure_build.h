@@ -3,8 +3,10 @@
 // the initial q and v. Every refusal names the file and the JSON path of the field.
 #pragma once
 
+#include <limits>
 #include <string>
 
+#include "control/joint_controller.h"
 #include "figure/figure_def.h"
 #include "figure/figure_model.h"
 
@@ -16,7 +18,19 @@ Mat3 shape_inertia(const SegmentShapeDef& shape, Real m);
 
 struct CompiledFigure {
   FigureModel model;
-  VecX q0, v0;  // initial state, n_q and n_v
+  VecX q0, v0;                               // initial state, n_q and n_v
+  std::vector<JointController> controllers;  // sec. 15.4 (figure/figure_controllers.h)
+  // The controllers' slice of State::q, first-order state integrated with the figure: the work
+  // the actuators have done [J] (the stability guard's account of the energy they put in),
+  // then kMracStateSize per MRAC (its reference model and integrals, sec. 15.4.2). Empty
+  // without controllers; placed by sim/model.cpp.
+  int n_control = 0;
+  int state_control_offset = 0;
+  // The longest step the explicit PD servos stay stable at (infinite without any), the one that
+  // sets it and its DOF's inertia (figure/figure_controllers.h).
+  Real servo_step_limit = std::numeric_limits<Real>::infinity();
+  int servo_limiting = -1;
+  Real servo_inertia = 0;
 };
 
 // `path` is the figure's JSON path ("figures[0]").

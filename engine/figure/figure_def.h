@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "control/controller_def.h"
 #include "core/types.h"
 #include "figure/joint.h"
 
@@ -70,6 +71,8 @@ struct FigureDef {
   Real impact_speed = 0.1;       // [m/s], >= 0: slower approaches are left to the springs
   Real contact_stiffness = 2e4;  // [N/m] per contact point, > 0
   Real contact_damping = 200;    // [N s/m] per contact point, >= 0
+  // Joint controllers (sec. 15.4), at most one per DOF.
+  std::vector<ControllerDef> controllers;
 };
 
 }  // namespace pbm

@@ -1,6 +1,5 @@
 #include "figure/stable_pd.h"
 
-#include <Eigen/Cholesky>
 #include <stdexcept>
 
 #include "figure/inverse_dynamics.h"
@@ -9,14 +8,16 @@
 namespace pbm {
 
 void stable_pd_accelerations(const FigureModel& figure, const VecX& q, const VecX& v,
-                             const VecX& tau_ext, const Vec3& gravity, const VecX& Kp,
-                             const VecX& Kd, const VecX& q_target, const VecX& v_target, Real dt,
+                             const VecX& tau_ext, std::span<const ForceVector> f_ext,
+                             const Vec3& gravity, const VecX& Kp, const VecX& Kd,
+                             const VecX& q_target, const VecX& v_target, Real dt,
                              FigureWorkspace& ws, StablePdWorkspace& pd, VecX& qdd, VecX& tau_pd) {
   const int n_v = figure.n_v;
   joint_space_inertia(figure, q.data(), ws, pd.H);
   pd.zero.setZero(n_v);
   pd.C.resize(n_v);
-  inverse_dynamics(figure, q.data(), v.data(), pd.zero.data(), {}, gravity, ws, pd.C.data());
+  // The bias with the external forces: RNEA's tau at zero acceleration is C - J^T f_ext.
+  inverse_dynamics(figure, q.data(), v.data(), pd.zero.data(), f_ext, gravity, ws, pd.C.data());
   // The servo's torque at the end of the step, its qddot part moved to the left.
   tau_pd.setZero(n_v);
   for (const SegmentModel& s : figure.segments) {
@@ -34,7 +35,8 @@ void stable_pd_accelerations(const FigureModel& figure, const VecX& q, const Vec
     }
   }
   pd.rhs = tau_ext - pd.C + tau_pd;
-  qdd = pd.H.llt().solve(pd.rhs);
+  pd.llt.compute(pd.H);
+  qdd = pd.llt.solve(pd.rhs);
   tau_pd -= (dt * Kd + dt * dt * Kp).cwiseProduct(qdd);
 }
 

@@ -9,23 +9,30 @@
 // the composite-rigid-body and Newton-Euler recursions.
 #pragma once
 
+#include <Eigen/Cholesky>
+#include <span>
+
 #include "figure/figure_model.h"
 #include "figure/figure_workspace.h"
 
 namespace pbm {
 
+// Sized on first use for a figure; later calls on it allocate nothing.
 struct StablePdWorkspace {
   MatX H;
   VecX C, rhs, zero;
+  Eigen::LLT<MatX> llt;
 };
 
 // Gains per velocity coordinate (n_v; nonzero only on revolute, prismatic and universal joints,
 // whose q and v entries correspond); targets q_d and qdot_d per velocity coordinate. tau_ext
-// (n_v) are the other joint forces. Writes the accelerations and the servo torques applied
+// (n_v) are the other joint forces; f_ext the external forces on the segments as in
+// forward_dynamics (empty: none). Writes the accelerations and the servo torques applied
 // (tau_pd, n_v). Throws std::invalid_argument for a gain on a quaternion joint.
 void stable_pd_accelerations(const FigureModel& figure, const VecX& q, const VecX& v,
-                             const VecX& tau_ext, const Vec3& gravity, const VecX& Kp,
-                             const VecX& Kd, const VecX& q_target, const VecX& v_target, Real dt,
+                             const VecX& tau_ext, std::span<const ForceVector> f_ext,
+                             const Vec3& gravity, const VecX& Kp, const VecX& Kd,
+                             const VecX& q_target, const VecX& v_target, Real dt,
                              FigureWorkspace& ws, StablePdWorkspace& pd, VecX& qdd, VecX& tau_pd);
 
 }  // namespace pbm

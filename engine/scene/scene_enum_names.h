@@ -50,6 +50,10 @@ inline constexpr NameTable<JointKind, 6> kJointKindNames{{{"revolute", JointKind
                                                           {"universal", JointKind::universal},
                                                           {"fixed", JointKind::fixed},
                                                           {"free", JointKind::free}}};
+inline constexpr NameTable<ControllerKind, 3> kControllerKindNames{
+    {{"mrac", ControllerKind::mrac},
+     {"pd", ControllerKind::pd},
+     {"stable_pd", ControllerKind::stable_pd}}};
 inline constexpr NameTable<SegmentShapeKind, 4> kSegmentShapeKindNames{
     {{"box", SegmentShapeKind::box},
      {"sphere", SegmentShapeKind::sphere},

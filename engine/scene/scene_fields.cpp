@@ -112,4 +112,35 @@ Vec2 read_material_point(const JsonNode& node) {
   return uv;
 }
 
+std::vector<Keyframe> read_keyframes(const FieldFormat& format, const JsonNode& node) {
+  const std::size_t n = require_array(node);
+  if (n == 0) fail(node, "must have at least one key [time, value]");
+  if (static_cast<Real>(n) > format.limit) {
+    fail(node,
+         "must have at most " + bound_text(format.limit) + " keys (got " + std::to_string(n) + ")");
+  }
+  std::vector<Keyframe> keys;
+  keys.reserve(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    const JsonNode key = element(node, j);
+    if (!key.value->is_array() || key.value->size() != 2) {
+      fail(key, "must be a [time, value] pair of numbers");
+    }
+    const Vec2 time_value = read_vec2(key);
+    if (j > 0 && !(time_value[0] > keys.back().time)) {
+      fail(key, "time " + format_real(time_value[0]) +
+                    " must be greater than the previous key's time " +
+                    format_real(keys.back().time));
+    }
+    keys.push_back(Keyframe{.time = time_value[0], .value = time_value[1]});
+  }
+  return keys;
+}
+
+OrderedJson keyframes_json(const std::vector<Keyframe>& keys) {
+  OrderedJson out = OrderedJson::array();
+  for (const Keyframe& key : keys) out.push_back({key.time, key.value});
+  return out;
+}
+
 }  // namespace pbm

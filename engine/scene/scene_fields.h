@@ -110,6 +110,23 @@ int read_body_reference(const JsonNode& node, const std::vector<BodyDef>& bodies
 int read_node_index(const JsonNode& node, const BodyDef& body);
 // Material coordinates (u, v) within the ranges of (2.7): -pi/2 <= u <= pi/2, -pi <= v <= pi.
 Vec2 read_material_point(const JsonNode& node);
+// Keyframes: [time, value] pairs, at least one and at most format.limit, strictly increasing in
+// time (tracks, joint trajectories); and their JSON.
+std::vector<Keyframe> read_keyframes(const FieldFormat& format, const JsonNode& node);
+OrderedJson keyframes_json(const std::vector<Keyframe>& keys);
+
+// A row of keyframes (std::vector<Keyframe>).
+template <auto Member>
+constexpr Field<ClassOf<Member>> keyframes(FieldFormat format) {
+  format.type = ValueType::keys;
+  return {format,
+          [](const FieldFormat& f, const JsonNode& node, ClassOf<Member>& def, const ReadContext&) {
+            def.*Member = read_keyframes(f, node);
+          },
+          [](const FieldFormat& f, const ClassOf<Member>& def, OrderedJson& object) {
+            object[f.key] = keyframes_json(def.*Member);
+          }};
+}
 
 // Below this length a quaternion or normal carries no direction.
 inline constexpr Real kMinimumDirectionLength = 1e-12;

@@ -14,7 +14,8 @@ namespace {
 // crane, low enough that the recursions' workspaces stay small.
 constexpr Real kMaxSegments = 1024;
 constexpr Real kMaxSites = 64;
-constexpr Real kMaxJointCoordinates = 7;  // a free joint's q: position and quaternion
+constexpr Real kMaxJointCoordinates = 7;            // a free joint's q: position and quaternion
+constexpr Real kMaxControllers = 6 * kMaxSegments;  // one per DOF
 
 constexpr std::uint32_t kHasAxis =
     kind_bit(JointKind::revolute) | kind_bit(JointKind::prismatic) | kind_bit(JointKind::universal);
@@ -104,7 +105,81 @@ constexpr auto kSiteFields = std::to_array<Field<SiteDef>>({
          .description = "The site's axes in the segment's frame, a quaternion (w, x, y, z)."}),
 });
 
+constexpr std::uint32_t kMrac = kind_bit(ControllerKind::mrac);
+constexpr std::uint32_t kPdServos =
+    kind_bit(ControllerKind::pd) | kind_bit(ControllerKind::stable_pd);
+
+// A trajectory is a few keys per second of motion; a recorded hour at 60 keys a second fits.
+constexpr Real kMaxTrajectoryKeys = 216000;
+
+constexpr auto kControllerFields = std::to_array<Field<ControllerDef>>({
+    choice<&ControllerDef::kind, kControllerKindNames>(
+        {.key = "kind",
+         .description = "mrac: model reference adaptive control (15.10)-(15.17); pd: an explicit "
+                        "PD servo; stable_pd: the PD servo taken at the step's end, stable at any "
+                        "gain."}),
+    value<&ControllerDef::joint>(
+        {.key = "joint",
+         .required = true,
+         .non_empty = true,
+         .description = "The segment whose parent joint it drives (revolute, prismatic or "
+                        "universal)."}),
+    value<&ControllerDef::dof>({.key = "dof",
+                                .range = kNonNegative,
+                                .limit = 1,
+                                .description = "Which of the joint's DOFs (universal: 0 or 1)."}),
+    choice<&ControllerDef::interpolation, kInterpolationNames>(
+        {.key = "interpolation",
+         .description = "Of the trajectory between keys; its derivatives give the desired "
+                        "velocity and acceleration."}),
+    keyframes<&ControllerDef::keys>(
+        {.key = "keys",
+         .unit = "rad or m",
+         .limit = kMaxTrajectoryKeys,
+         .required = true,
+         .description = "The desired joint position: [time s, value] pairs, strictly increasing "
+                        "in time (sec. 15.1.2)."}),
+    value<&ControllerDef::settling_time>(
+        {.key = "settling_time",
+         .unit = "s",
+         .range = kPositive,
+         .kinds = kMrac,
+         .description = "t_s of the reference model: lambda = 4 / t_s (15.11)."}),
+    value<&ControllerDef::alpha>({.key = "alpha",
+                                  .range = kNonNegative,
+                                  .kinds = kMrac,
+                                  .description = "Integral adaptation gain (15.16), (15.17)."}),
+    value<&ControllerDef::beta>({.key = "beta",
+                                 .range = kNonNegative,
+                                 .kinds = kMrac,
+                                 .description = "Proportional adaptation gain (15.16), (15.17)."}),
+    value<&ControllerDef::kp>({.key = "kp",
+                               .unit = "N m/rad or N/m",
+                               .range = kNonNegative,
+                               .kinds = kPdServos,
+                               .description = "Stiffness of the servo."}),
+    value<&ControllerDef::kd>({.key = "kd",
+                               .unit = "N m s/rad or N s/m",
+                               .range = kNonNegative,
+                               .kinds = kPdServos,
+                               .description = "Damping of the servo."}),
+    value<&ControllerDef::max_output>(
+        {.key = "max_output",
+         .unit = "N m or N",
+         .range = kPositive,
+         .default_note = "unlimited",
+         .description = "The actuator's limit |u|; MRAC's integrals freeze while it holds "
+                        "(sec. 15.4.2)."}),
+});
+
 }  // namespace
+
+constexpr Section<ControllerDef> kControllerSection{
+    .name = "controller",
+    .noun = "controller",
+    .fields = kControllerFields,
+    .kind_of = [](const ControllerDef& c) { return static_cast<int>(c.kind); },
+    .kind_names = kNameList<kControllerKindNames>};
 
 constexpr Section<JointDef> kJointSection{
     .name = "joint",
@@ -191,6 +266,12 @@ constexpr auto kFigureFields = std::to_array<Field<FigureDef>>({
                                         .unit = "N s/m",
                                         .range = kNonNegative,
                                         .description = "Its damper, per contact point."}),
+    list<&FigureDef::controllers, kControllerSection>(
+        {.key = "controllers",
+         .limit = kMaxControllers,
+         .section = "controller",
+         .description = "Joint controllers following trajectories (sec. 15.4), one per DOF at "
+                        "most."}),
 });
 
 // The whole figure compiled as soon as it is read: its tree, masses, inertias, axes and initial

@@ -14,7 +14,8 @@ std::vector<SectionDescription> describe_scene_format() {
           describe_section(kConstraintSection),   describe_section(kConstraintEndSection),
           describe_section(kTrackSection),        describe_section(kFigureSection),
           describe_section(kSegmentSection),      describe_section(kJointSection),
-          describe_section(kSegmentShapeSection), describe_section(kSiteSection)};
+          describe_section(kSegmentShapeSection), describe_section(kSiteSection),
+          describe_section(kControllerSection)};
 }
 
 const SectionDescription* find_section(const std::vector<SectionDescription>& sections,

@@ -12,30 +12,6 @@ namespace {
 // dragging at 60 events a second.
 constexpr Real kMaxKeysPerTrack = 100000;
 
-void read_keys(const FieldFormat& format, const JsonNode& node, TrackDef& track,
-               const ReadContext&) {
-  const std::size_t n = require_array(node);
-  if (n == 0) fail(node, "must have at least one key [time, value]");
-  if (static_cast<Real>(n) > format.limit) {
-    fail(node,
-         "must have at most " + bound_text(format.limit) + " keys (got " + std::to_string(n) + ")");
-  }
-  track.keys.reserve(n);
-  for (std::size_t j = 0; j < n; ++j) {
-    const JsonNode key = element(node, j);
-    if (!key.value->is_array() || key.value->size() != 2) {
-      fail(key, "must be a [time, value] pair of numbers");
-    }
-    const Vec2 time_value = read_vec2(key);
-    if (j > 0 && !(time_value[0] > track.keys.back().time)) {
-      fail(key, "time " + format_real(time_value[0]) +
-                    " must be greater than the previous key's time " +
-                    format_real(track.keys.back().time));
-    }
-    track.keys.push_back(Keyframe{.time = time_value[0], .value = time_value[1]});
-  }
-}
-
 // Two tracks driving one value would fight; the later one is refused.
 void check_track(const JsonNode& node, TrackDef& track, const ReadContext& context) {
   const int same =
@@ -61,17 +37,11 @@ constexpr auto kTrackFields = std::to_array<Field<TrackDef>>({
         {.key = "interpolation",
          .description = "Between keys; step holds a key's value until the next (recorded "
                         "drags)."}),
-    {{.key = "keys",
-      .type = ValueType::keys,
-      .limit = kMaxKeysPerTrack,
-      .required = true,
-      .description = "[time s, value] pairs, at least one, strictly increasing in time."},
-     read_keys,
-     [](const FieldFormat& f, const TrackDef& track, OrderedJson& object) {
-       OrderedJson keys = OrderedJson::array();
-       for (const Keyframe& key : track.keys) keys.push_back({key.time, key.value});
-       object[f.key] = std::move(keys);
-     }},
+    keyframes<&TrackDef::keys>(
+        {.key = "keys",
+         .limit = kMaxKeysPerTrack,
+         .required = true,
+         .description = "[time s, value] pairs, at least one, strictly increasing in time."}),
 });
 
 }  // namespace

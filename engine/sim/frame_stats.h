@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "collide/body_collisions.h"
+#include "control/joint_controller.h"
 #include "core/types.h"
 #include "sim/step_stage.h"
 
@@ -23,7 +24,10 @@ struct BodyFrameStats {
 struct FigureFrameStats {
   Real kinetic = 0, potential = 0;  // [J]; potential: gravity's
   Real elastic = 0;                 // the contact springs' [J]
+  Real work = 0;                    // the work its actuators have done since the start [J]
   int contacts = 0;                 // contact points touching an obstacle
+  // Each controller of CompiledFigure::controllers at the measured state (figs. 15.7, 15.8).
+  std::vector<ControlSample> controllers;
 };
 
 // Levels of detail chosen automatically (sim/level_of_detail.h) at the frame's start.
@@ -41,7 +45,10 @@ struct FrameStats {
   int rejected = 0;     // adaptive implicit substeps rejected by the error estimate (all attempts)
   int retries = 0;      // halvings of the substep the guard needed
   int evaluations = 0;  // rate evaluations of the accepted attempt
-  Real kinetic = 0, elastic = 0, potential = 0;  // totals [J]
+  // Totals [J]. potential also counts, with a minus sign, the work the figures' actuators have
+  // done: the energy they put in is spent from it, so an exact step keeps the total constant and
+  // the guard judges only what the numerics add.
+  Real kinetic = 0, elastic = 0, potential = 0;
   // The run-level guard after the frame: the energy gained beyond the inputs' work and the most
   // it may be (State::energy_surplus, solver.energy_tolerance x scale) [J].
   Real energy_surplus = 0, energy_limit = 0;

@@ -46,11 +46,27 @@ TrackModel build_track(const Scene& scene, int t) {
 void limit_substep(Model& model) {
   const BodyModel* limiting = nullptr;
   model.substep = stable_substep(model, {}, &limiting);
-  if (limiting == nullptr) return;
   const Real frame = 1.0 / model.solver.fps;
   const Real taken = frame / std::max(1.0, std::ceil(frame / model.solver.dt - 1e-9));
   const Real limit = model.substep;
   char note[400];
+  if (limiting == nullptr) {
+    // A figure's explicit servo, if any, set the limit.
+    for (const CompiledFigure& figure : model.figures) {
+      if (!(kStabilitySafety * figure.servo_step_limit == limit)) continue;
+      const JointController& c = figure.controllers[figure.servo_limiting];
+      std::snprintf(note, sizeof note,
+                    "figure '%s', controller %d (joint '%s'): the substep %.3g s (solver.dt %g s) "
+                    "is past the explicit PD's stability limit %.3g s (kp %g, kd %g on %.4g of "
+                    "inertia); substeps shortened to %.3g s (a stable_pd servo needs no limit)",
+                    figure.model.name.c_str(), figure.servo_limiting, c.def.joint.c_str(), taken,
+                    model.solver.dt, figure.servo_step_limit, c.def.kp, c.def.kd,
+                    figure.servo_inertia, limit);
+      model.notes += (model.notes.empty() ? "" : "; ") + std::string(note);
+      return;
+    }
+    return;
+  }
   const StabilityLimit& s = limiting->stability;
   if (s.omega >= s.omega_shape && model.solver.integrator != IntegratorKind::implicit) {
     std::snprintf(note, sizeof note,
@@ -102,6 +118,13 @@ Real stable_substep(const Model& model, std::span<const std::uint8_t> dormant,
       if (limiting) *limiting = &body;
     }
   }
+  // Explicit PD servos on figures (figure/figure_controllers.h): their own limit, once.
+  for (const CompiledFigure& figure : model.figures) {
+    if (kStabilitySafety * figure.servo_step_limit < limit) {
+      limit = kStabilitySafety * figure.servo_step_limit;
+      if (limiting) *limiting = nullptr;
+    }
+  }
   return limit < taken ? limit : model.solver.dt;
 }
 
@@ -130,6 +153,9 @@ Model build_model(const Scene& scene) {
     figure.model.state_v_offset = model.n_v;
     model.n_q += figure.model.n_q;
     model.n_v += figure.model.n_v;
+    // The controllers' first-order state follows the figure's q (figure/figure_build.h).
+    figure.state_control_offset = model.n_q;
+    model.n_q += figure.n_control;
     model.figures.push_back(std::move(figure));
   }
   for (std::size_t o = 0; o < scene.obstacles.size(); ++o) {

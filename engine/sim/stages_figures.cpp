@@ -8,6 +8,7 @@
 #include "figure/figure_impact.h"
 #include "figure/figure_kinematics.h"
 #include "figure/segment_probes.h"
+#include "sim/stages_figure_control.h"
 
 namespace pbm::stages {
 
@@ -163,6 +164,7 @@ void size_figures(const Model& model, Workspace& ws) {
   }
   fw.q.setZero(n_q);
   fw.v.setZero(n_v);
+  size_figure_controllers(model, ws);
 }
 
 bool figure_contacts_present(const Model& model) {
@@ -240,15 +242,23 @@ void figure_dynamics(const RateContext& c) {
   FiguresWorkspace& fw = *c.ws.figures;
   for (std::size_t f = 0; f < c.model.figures.size(); ++f) {
     const FigureModel& figure = c.model.figures[f].model;
+    const CompiledFigure& compiled = c.model.figures[f];
     const Real* v = v_of(figure, c.v);
     joint_damping(figure, v, fw.tau.data());
+    // The explicit controllers' forces (the controllers stage ran before).
+    if (!compiled.controllers.empty()) fw.tau.head(figure.n_v) += fw.control[f].tau;
     // Gravity as the base's acceleration, at its value of the moment (tracks may drive it); the
     // contact stage's forces when obstacles are present (figure_contact_forces ran before).
     const std::span<const ForceVector> external =
         figure_contacts_present(c.model) ? std::span<const ForceVector>(fw.contact_forces[f])
                                          : std::span<const ForceVector>();
-    forward_dynamics(figure, q_of(figure, c.q), v, fw.tau.data(), external, c.ws.drive.gravity,
-                     fw.each[f], c.v_dot.data() + figure.state_v_offset);
+    if (has_stable_pd(compiled)) {
+      stable_pd_dynamics(c, f, external);
+    } else {
+      forward_dynamics(figure, q_of(figure, c.q), v, fw.tau.data(), external, c.ws.drive.gravity,
+                       fw.each[f], c.v_dot.data() + figure.state_v_offset);
+    }
+    actuator_work_rate(c, f);
   }
 }
 
@@ -288,6 +298,7 @@ void measure_figures(const Model& model, const State& state, Workspace& ws, Fram
     }
     out.elastic = 0;
     out.contacts = 0;
+    measure_figure_controllers(model.figures[f], state, out);
     if (!figure_contacts_present(model)) continue;
     const FigureDef& def = model.scene.figures[f];
     for_each_contact(figure, def, w, fw.world, ws.drive.obstacles,
@@ -309,6 +320,10 @@ std::string describe_figure_failure(const Model& model, const State& state) {
       if (q.allFinite() && v.allFinite()) continue;
       return "figure '" + figure.name + "', segment '" + s.name + "': its joint's " +
              (q.allFinite() ? "velocity" : "position") + " became NaN or infinite";
+    }
+    if (!state.q.segment(compiled.state_control_offset, compiled.n_control).allFinite()) {
+      return "figure '" + figure.name + "': its controllers' state (MRAC's model and integrals, " +
+             "the actuators' work) became NaN or infinite";
     }
   }
   return {};

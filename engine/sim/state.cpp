@@ -27,6 +27,12 @@ State initial_state(const Model& model) {
   for (const CompiledFigure& figure : model.figures) {
     st.q.segment(figure.model.state_q_offset, figure.model.n_q) = figure.q0;
     st.v.segment(figure.model.state_v_offset, figure.model.n_v) = figure.v0;
+    // No work done yet; each MRAC's reference model at its DOF, its integrals zero.
+    Real* control = st.q.data() + figure.state_control_offset;
+    for (const JointController& c : figure.controllers) {
+      if (c.state_offset < 0) continue;
+      controller_start(c, figure.q0[c.q_index], figure.v0[c.v_index], control + c.state_offset);
+    }
   }
   return st;
 }

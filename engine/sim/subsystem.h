@@ -57,7 +57,7 @@ struct Subsystem {
   bool (*present)(const Model&) = nullptr;  // does the scene have it
   // Sizes its part of the workspace (called once per workspace).
   void (*size_workspace)(const Model&, Workspace&) = nullptr;
-  std::array<RateHook, 3> rates{};  // its forces and rates, by stage
+  std::array<RateHook, 4> rates{};  // its forces and rates, by stage
   // q-dot from v for its second-order parts (Euler's update of q from the new v, (6.1)).
   void (*kinematic_rates)(const Model&, const VecX& q, const VecX& v, VecX& q_dot) = nullptr;
   std::array<SubstepHook, 3> substep{};  // before and after the integrator, by stage

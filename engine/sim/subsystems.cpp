@@ -4,6 +4,7 @@
 #include "sim/stages_bodies.h"
 #include "sim/stages_collisions.h"
 #include "sim/stages_constraints.h"
+#include "sim/stages_figure_control.h"
 #include "sim/stages_figures.h"
 #include "sim/stages_obstacles.h"
 #include "sim/subsystem.h"
@@ -59,10 +60,12 @@ constexpr Subsystem kTable[] = {
      .present = stages::figures_present,
      .size_workspace = stages::size_figures,
      .rates = {{{S::contact_forces, stages::figure_contact_forces},
+                {S::controllers, stages::figure_controllers},
                 {S::dynamics, stages::figure_dynamics},
                 {S::kinematics, stages::figure_kinematics}}},
      .kinematic_rates = stages::figure_kinematic_rates,
-     .substep = {{{S::renormalize, stages::figure_renormalize},
+     .substep = {{{S::step_start, stages::figure_step_start, stages::figure_controllers_present},
+                  {S::renormalize, stages::figure_renormalize},
                   {S::impacts, stages::figure_impacts, stages::figure_contacts_present}}},
      .measure = stages::measure_figures,
      .describe_failure = stages::describe_figure_failure,

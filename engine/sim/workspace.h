@@ -13,6 +13,7 @@
 #include "deform/body_workspace.h"
 #include "figure/figure_impact.h"
 #include "figure/figure_workspace.h"
+#include "figure/stable_pd.h"
 #include "integrate/integrators.h"
 #include "sim/frame_stats.h"
 #include "sim/state.h"
@@ -28,12 +29,24 @@ struct BodyReach {
   Real travel = 0;  // how far a point of it may move in the lookahead [m]
 };
 
+// One figure's controllers (sim/stages_figure_control.h), each vector n_v: the actuators' forces
+// of this evaluation (MRAC and PD first, then the stable PD's), and the stable PD's gains, targets,
+// other joint forces, accelerations and servo forces.
+struct FigureControlWorkspace {
+  VecX tau;
+  VecX Kp, Kd, q_target, v_target, tau_ext, qdd, tau_pd;
+  StablePdWorkspace pd;
+};
+
 // The figures' scratch (sim/stages_figures.h): each figure's recursions, the joint forces of the
-// one being evaluated, its segments' world transforms, the contact stage's forces on each segment
-// and the impact stage's system.
+// one being evaluated, its segments' world transforms, the contact stage's forces on each segment,
+// the explicit controllers' forces, the stable PD's system and the impact stage's system.
 struct FiguresWorkspace {
   std::vector<FigureWorkspace> each;
   VecX tau;
+  std::vector<FigureControlWorkspace> control;  // per figure; empty without controllers
+  // The step length the stable PD servos are implicit over: the substep under way.
+  Real step = 0;
   std::vector<SpatialTransform> world;
   std::vector<std::vector<ForceVector>> contact_forces;  // per figure, per segment (own frame)
   std::vector<ImpactContact> impacts;

@@ -86,20 +86,29 @@ Real total_energy(const FrameStats& s) {
   return s.kinetic + s.elastic + s.potential;
 }
 
-// The body whose kinetic + elastic energy grew most in the frame.
-std::string body_that_gained(const Model& model, const FrameStats& before,
+// The body or figure whose kinetic + elastic energy grew most in the frame ("body 'ball'",
+// "figure 'arm'").
+std::string part_that_gained(const Model& model, const FrameStats& before,
                              const FrameStats& after) {
-  std::size_t best = 0;
+  std::string best;
   Real most = -1e300;
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     const Real gain = after.bodies[b].kinetic + after.bodies[b].elastic - before.bodies[b].kinetic -
                       before.bodies[b].elastic;
     if (gain > most) {
       most = gain;
-      best = b;
+      best = "body '" + model.bodies[b].name + "'";
     }
   }
-  return model.bodies.empty() ? std::string() : model.bodies[best].name;
+  for (std::size_t f = 0; f < model.figures.size(); ++f) {
+    const Real gain = after.figures[f].kinetic + after.figures[f].elastic -
+                      before.figures[f].kinetic - before.figures[f].elastic;
+    if (gain > most) {
+      most = gain;
+      best = "figure '" + model.figures[f].model.name + "'";
+    }
+  }
+  return best;
 }
 
 // Names the body or figure whose energy grew most out of line ("body 'ball'"), or "" (the growth
@@ -243,7 +252,7 @@ void measure_state(const World& world, const Inputs& inputs, const State& state,
   }
   for (const FigureFrameStats& figure : stats.figures) {
     stats.kinetic += figure.kinetic;
-    stats.potential += figure.potential;
+    stats.potential += figure.potential - figure.work;
     stats.elastic += figure.elastic;
   }
   if (world.has(SubsystemId::constraints)) stats.elastic += stats.hinge_energy;
@@ -358,7 +367,7 @@ FrameResult advance_frame(const World& world, const Inputs& inputs, State& state
         const Real scale = std::max(state.energy_scale, e1);
         const Real limit = model.solver.energy_tolerance * (scale + floor);
         if (!(surplus <= limit)) {
-          failure = "body '" + body_that_gained(model, before, after) + "': the energy grew by " +
+          failure = part_that_gained(model, before, after) + ": the energy grew by " +
                     std::to_string(surplus) +
                     " J beyond the work of the inputs, more than solver.energy_tolerance " +
                     std::to_string(model.solver.energy_tolerance) + " x " +

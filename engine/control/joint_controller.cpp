@@ -1,0 +1,59 @@
+#include "control/joint_controller.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "control/joint_trajectory.h"
+
+namespace pbm {
+
+namespace {
+
+MracState unpack(const Real* s) {
+  MracState m;
+  m.x_m = Vec2(s[0], s[1]);
+  m.K_integral = Vec2(s[2], s[3]);
+  m.Kr_integral = s[4];
+  return m;
+}
+
+void pack(const MracState& m, Real* s) {
+  s[0] = m.x_m[0];
+  s[1] = m.x_m[1];
+  s[2] = m.K_integral[0];
+  s[3] = m.K_integral[1];
+  s[4] = m.Kr_integral;
+}
+
+}  // namespace
+
+DesiredMotion controller_desired(const JointController& c, Real t) {
+  return desired_motion(c.def.interpolation, c.def.keys, t);
+}
+
+ControlSample explicit_control(const JointController& c, Real t, Real q, Real q_dot,
+                               const Real* state, Real* rate) {
+  const DesiredMotion d = controller_desired(c, t);
+  ControlSample out{.desired = d.q, .reference = d.q, .actual = q};
+  if (c.def.kind == ControllerKind::mrac) {
+    MracState r;
+    const MracOutput u = mrac_control(c.mrac, unpack(state), q, q_dot, d, r);
+    pack(r, rate);
+    out.reference = state[0];
+    out.output = u.u;
+    out.saturated = u.saturated;
+    return out;
+  }
+  const Real u = c.def.kp * (d.q - q) + c.def.kd * (d.q_dot - q_dot);
+  const Real limit = c.def.max_output.value_or(std::numeric_limits<Real>::infinity());
+  out.saturated = std::abs(u) > limit;
+  out.output = std::clamp(u, -limit, limit);
+  return out;
+}
+
+void controller_start(const JointController& c, Real q, Real q_dot, Real* state) {
+  if (c.def.kind == ControllerKind::mrac) pack(mrac_start(q, q_dot), state);
+}
+
+}  // namespace pbm

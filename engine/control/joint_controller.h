@@ -1,0 +1,46 @@
+// A joint controller compiled against its figure (figure/figure_controllers.h) and the explicit
+// laws a rate evaluation applies: MRAC (15.10)-(15.17) and PD. The stable PD is not explicit: its
+// gains enter the figure's mass matrix (figure/stable_pd.h), so the figure's dynamics stage
+// solves for it; here it only reports its desired motion.
+#pragma once
+
+#include "control/controller_def.h"
+#include "control/mrac.h"
+
+namespace pbm {
+
+// Entries of a controller's state in the figure's controller slice of State::q (its integrals,
+// sec. 15.4.2): MRAC keeps (q_m, q_m-dot, K_1, K_2, K_r); PD and stable PD keep none.
+inline constexpr int kMracStateSize = 5;
+
+struct JointController {
+  ControllerDef def;
+  int segment = 0;        // the driven joint's segment
+  int q_index = 0;        // the DOF's entry in the figure's q
+  int v_index = 0;        // and in its v
+  int state_offset = -1;  // MRAC: first of its kMracStateSize entries in the controller slice
+  MracSettings mrac;      // from def, for mrac_control
+};
+
+// What a controller does at one time: its desired, reference-model and actual positions, and its
+// output (the force or torque on the DOF, within the limit). Figs. 15.7, 15.8 plot the first three.
+struct ControlSample {
+  Real desired = 0;
+  Real reference = 0;  // MRAC's q_m; PD: the desired position
+  Real actual = 0;
+  Real output = 0;
+  bool saturated = false;
+};
+
+DesiredMotion controller_desired(const JointController& c, Real t);
+
+// The explicit laws (MRAC, PD) at time t on a DOF at (q, q_dot): the sample, and the rates of the
+// controller's state entries (state, rate: its kMracStateSize entries; unused for PD).
+ControlSample explicit_control(const JointController& c, Real t, Real q, Real q_dot,
+                               const Real* state, Real* rate);
+
+// The state a controller starts with at (q, q_dot): MRAC's model at the DOF, integrals zero
+// (mrac_start); writes kMracStateSize entries.
+void controller_start(const JointController& c, Real q, Real q_dot, Real* state);
+
+}  // namespace pbm

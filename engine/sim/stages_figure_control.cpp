@@ -1,0 +1,174 @@
+#include "sim/stages_figure_control.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "figure/stable_pd.h"
+
+namespace pbm::stages {
+
+namespace {
+
+Real limit_of(const JointController& c) {
+  return c.def.max_output.value_or(std::numeric_limits<Real>::infinity());
+}
+
+}  // namespace
+
+bool figure_controllers_present(const Model& model) {
+  for (const CompiledFigure& figure : model.figures) {
+    if (!figure.controllers.empty()) return true;
+  }
+  return false;
+}
+
+bool has_stable_pd(const CompiledFigure& figure) {
+  for (const JointController& c : figure.controllers) {
+    if (c.def.kind == ControllerKind::stable_pd) return true;
+  }
+  return false;
+}
+
+void size_figure_controllers(const Model& model, Workspace& ws) {
+  FiguresWorkspace& fw = *ws.figures;
+  fw.control.resize(model.figures.size());
+  fw.step = model.substep;
+  for (std::size_t f = 0; f < model.figures.size(); ++f) {
+    const CompiledFigure& figure = model.figures[f];
+    if (figure.controllers.empty()) continue;
+    const int n = figure.model.n_v;
+    FigureControlWorkspace& w = fw.control[f];
+    for (VecX* x : {&w.tau, &w.Kp, &w.Kd, &w.q_target, &w.v_target, &w.tau_ext, &w.qdd, &w.tau_pd})
+      x->setZero(n);
+    if (!has_stable_pd(figure)) continue;
+    // The solve's own matrices, sized once so that a step allocates nothing.
+    w.pd.H.setZero(n, n);
+    w.pd.C.setZero(n);
+    w.pd.rhs.setZero(n);
+    w.pd.zero.setZero(n);
+    w.pd.llt.compute(MatX::Identity(n, n));
+  }
+}
+
+void figure_step_start(const SubstepContext& c) {
+  c.ws.figures->step = c.dt;
+}
+
+void figure_controllers(const RateContext& c) {
+  FiguresWorkspace& fw = *c.ws.figures;
+  for (std::size_t f = 0; f < c.model.figures.size(); ++f) {
+    const CompiledFigure& figure = c.model.figures[f];
+    if (figure.controllers.empty()) continue;
+    FigureControlWorkspace& w = fw.control[f];
+    w.tau.setZero();
+    const Real* q = c.q.data() + figure.model.state_q_offset;
+    const Real* v = c.v.data() + figure.model.state_v_offset;
+    const Real* state = c.q.data() + figure.state_control_offset;
+    Real* rate = c.q_dot.data() + figure.state_control_offset;
+    for (const JointController& ctrl : figure.controllers) {
+      if (ctrl.def.kind == ControllerKind::stable_pd) continue;
+      const int s = std::max(ctrl.state_offset, 0);
+      w.tau[ctrl.v_index] +=
+          explicit_control(ctrl, c.t, q[ctrl.q_index], v[ctrl.v_index], state + s, rate + s).output;
+    }
+  }
+}
+
+void stable_pd_dynamics(const RateContext& c, std::size_t f,
+                        std::span<const ForceVector> external) {
+  FiguresWorkspace& fw = *c.ws.figures;
+  const CompiledFigure& figure = c.model.figures[f];
+  const FigureModel& model = figure.model;
+  FigureControlWorkspace& w = fw.control[f];
+  fw.q.head(model.n_q) = c.q.segment(model.state_q_offset, model.n_q);
+  fw.v.head(model.n_v) = c.v.segment(model.state_v_offset, model.n_v);
+  w.Kp.setZero();
+  w.Kd.setZero();
+  w.q_target.setZero();
+  w.v_target.setZero();
+  for (const JointController& ctrl : figure.controllers) {
+    if (ctrl.def.kind != ControllerKind::stable_pd) continue;
+    const DesiredMotion d = controller_desired(ctrl, c.t);
+    w.Kp[ctrl.v_index] = ctrl.def.kp;
+    w.Kd[ctrl.v_index] = ctrl.def.kd;
+    w.q_target[ctrl.v_index] = d.q;
+    w.v_target[ctrl.v_index] = d.q_dot;
+  }
+  w.tau_ext = fw.tau.head(model.n_v);
+  // A servo whose torque would pass its limit gives the limit instead, as a known force, and the
+  // solve is repeated without its gains, until no other servo passes its own (at most once per
+  // servo).
+  for (;;) {
+    stable_pd_accelerations(model, fw.q, fw.v, w.tau_ext, external, c.ws.drive.gravity, w.Kp, w.Kd,
+                            w.q_target, w.v_target, fw.step, fw.each[f], w.pd, w.qdd, w.tau_pd);
+    bool cut = false;
+    for (const JointController& ctrl : figure.controllers) {
+      const int i = ctrl.v_index;
+      if (ctrl.def.kind != ControllerKind::stable_pd || (w.Kp[i] == 0 && w.Kd[i] == 0)) continue;
+      const Real limit = limit_of(ctrl);
+      if (!(std::abs(w.tau_pd[i]) > limit)) continue;
+      w.tau_ext[i] += std::clamp(w.tau_pd[i], -limit, limit);
+      w.tau[i] += std::clamp(w.tau_pd[i], -limit, limit);
+      w.Kp[i] = w.Kd[i] = 0;
+      cut = true;
+    }
+    if (!cut) break;
+  }
+  w.tau += w.tau_pd;
+  c.v_dot.segment(model.state_v_offset, model.n_v) = w.qdd;
+}
+
+void actuator_work_rate(const RateContext& c, std::size_t f) {
+  const CompiledFigure& figure = c.model.figures[f];
+  if (figure.controllers.empty()) return;
+  const FigureModel& model = figure.model;
+  const FiguresWorkspace& fw = *c.ws.figures;
+  const auto v = c.v.segment(model.state_v_offset, model.n_v);
+  // The power u . q-dot. Euler's step (6.1) moves q with the new velocity, so the work of the
+  // forces it holds over the step is u . v_new dt, v_new = v + dt v-dot: counted at v, a stiff
+  // servo's first step would do no work while the figure gains its energy. The Runge-Kutta
+  // integrators take the power at each stage as it is.
+  const IntegratorKind kind = c.model.solver.integrator;
+  if (kind == IntegratorKind::euler || kind == IntegratorKind::implicit) {
+    c.q_dot[figure.state_control_offset] =
+        fw.control[f].tau.dot(v + fw.step * c.v_dot.segment(model.state_v_offset, model.n_v));
+  } else {
+    c.q_dot[figure.state_control_offset] = fw.control[f].tau.dot(v);
+  }
+}
+
+void measure_figure_controllers(const CompiledFigure& figure, const State& state,
+                                FigureFrameStats& out) {
+  out.controllers.resize(figure.controllers.size());
+  if (figure.controllers.empty()) {
+    out.work = 0;
+    return;
+  }
+  const Real* q = state.q.data() + figure.model.state_q_offset;
+  const Real* v = state.v.data() + figure.model.state_v_offset;
+  const Real* control = state.q.data() + figure.state_control_offset;
+  out.work = control[0];
+  for (std::size_t k = 0; k < figure.controllers.size(); ++k) {
+    const JointController& c = figure.controllers[k];
+    const Real qi = q[c.q_index], vi = v[c.v_index];
+    if (c.def.kind != ControllerKind::stable_pd) {
+      Real rate[kMracStateSize];
+      out.controllers[k] =
+          explicit_control(c, state.time, qi, vi, control + std::max(c.state_offset, 0), rate);
+      continue;
+    }
+    // The servo's spring-damper at the state; the step applies it at the step's end (within the
+    // same limit), which differs from this by O(dt).
+    const DesiredMotion d = controller_desired(c, state.time);
+    const Real u = c.def.kp * (d.q - qi) + c.def.kd * (d.q_dot - vi);
+    const Real limit = limit_of(c);
+    out.controllers[k] = {.desired = d.q,
+                          .reference = d.q,
+                          .actual = qi,
+                          .output = std::clamp(u, -limit, limit),
+                          .saturated = std::abs(u) > limit};
+  }
+}
+
+}  // namespace pbm::stages

@@ -1,0 +1,32 @@
+// The figures' joint controllers in the step (sec. 15.4, control/): MRAC and PD servos in the
+// controllers stage, their outputs joining the figure's joint forces; stable PD servos inside the
+// dynamics stage, whose solve they change (figure/stable_pd.h); the rates of the controllers'
+// state (MRAC's reference model and integrals, the actuators' work) and what a frame reports of
+// them. Parts of the figures' row of the subsystem table (sim/subsystems.cpp).
+#pragma once
+
+#include <span>
+
+#include "sim/subsystem.h"
+
+namespace pbm::stages {
+
+bool figure_controllers_present(const Model& model);
+void size_figure_controllers(const Model& model, Workspace& ws);
+void figure_step_start(const SubstepContext& c);  // step_start: the stable PD's step length
+void figure_controllers(const RateContext& c);    // controllers: MRAC and PD outputs, MRAC rates
+
+// Figure f's accelerations (its slice of c.v_dot) under its stable PD servos, with the joint
+// forces ws.figures->tau (damping and the explicit controllers) and the external forces on its
+// segments; their torque joins the actuators' forces.
+void stable_pd_dynamics(const RateContext& c, std::size_t f, std::span<const ForceVector> external);
+bool has_stable_pd(const CompiledFigure& figure);
+
+// The rate of the actuators' work, sum of u q-dot, once every actuator's force is known.
+void actuator_work_rate(const RateContext& c, std::size_t f);
+
+// The work done so far and each controller's sample at `state` (ws.drive at state.time).
+void measure_figure_controllers(const CompiledFigure& figure, const State& state,
+                                FigureFrameStats& out);
+
+}  // namespace pbm::stages
