@@ -68,7 +68,7 @@ std::string ball(const std::string& eps1, const std::string& w1, const std::stri
 TEST(Cli, ValidateAcceptsEveryShippedScene) {
   for (const char* name :
        {"jello-ball", "rugby-ball", "morphing-shell", "interactive", "snowman", "dragonfly",
-        "seesaw", "pendulum-chain", "rope-drop", "waist-smooth", "waist-step"}) {
+        "seesaw", "pendulum-chain", "rope-drop", "waist-smooth", "waist-step", "desk"}) {
     const Result r = pbm("validate " + scene(name));
     EXPECT_EQ(r.code, 0) << name << ": " << r.output;
   }

@@ -260,5 +260,54 @@ TEST(FigureControlWorld, TheWaistTakesStepsAtItsSettlingTime) {
   EXPECT_LT(run.rms[1], run.rms[2]);
 }
 
+// The desk (fig. 15.9): both arms are driven down through a desk. The contacts stop them short of
+// the target; from the first touch each shoulder's MRAC sits at its 25 N m limit, never beyond,
+// and stays there with its integrals frozen, while the elbows, which hold the forearm against the
+// desk's push, stay within theirs.
+TEST(FigureControlWorld, ArmsDrivenThroughADeskSaturateAndStaySaturated) {
+  Simulation sim(load_scene(std::string(PBM_SOURCE_DIR) + "/scenes/desk.json"));
+  const CompiledFigure& figure = sim.model.figures[0];
+  const int frames = static_cast<int>(sim.model.scene.solver.duration * sim.model.scene.solver.fps);
+  int first_saturated = -1;
+  VecX frozen;
+  Real largest = 0;
+  for (int frame = 0; frame < frames; ++frame) {
+    ASSERT_TRUE(advance_frame(sim).ok) << frame;
+    const FigureFrameStats& fs = sim.stats.figures[0];
+    for (int arm : {0, 2}) {  // the shoulders
+      const ControlSample& c = fs.controllers[arm];
+      largest = std::max(largest, std::abs(c.output));
+      if (first_saturated < 0 && c.saturated) first_saturated = frame;
+      if (first_saturated >= 0) {
+        EXPECT_TRUE(c.saturated) << "frame " << frame;
+        // On the desk (above it the arm was at -1.03 rad at 1 s), short of the target -0.4 rad.
+        EXPECT_GT(c.actual, -1.0) << "frame " << frame;
+        EXPECT_LT(c.actual, -0.75) << "frame " << frame;
+      }
+    }
+    for (int elbow : {1, 3}) {
+      EXPECT_FALSE(fs.controllers[elbow].saturated) << frame;
+    }
+    if (first_saturated >= 0) {
+      EXPECT_GE(fs.contacts, 2) << frame;
+    }
+    // The shoulders' integrals (K, K_r) at the first saturated frame, and after.
+    VecX integrals(6);
+    for (int arm : {0, 2}) {
+      const int at = figure.state_control_offset + figure.controllers[arm].state_offset + 2;
+      integrals.segment<3>(arm / 2 * 3) = sim.state.q.segment<3>(at);
+    }
+    if (first_saturated == frame) frozen = integrals;
+    if (first_saturated >= 0 && first_saturated < frame) {
+      EXPECT_TRUE(integrals == frozen) << frame;
+    }
+  }
+  std::printf("desk: the shoulders saturate at %.2f s and stay at |u| = %.4f N m to %.1f s\n",
+              first_saturated / sim.model.scene.solver.fps, largest, sim.state.time);
+  ASSERT_GE(first_saturated, 0);
+  EXPECT_LT(first_saturated / sim.model.scene.solver.fps, 1.5);
+  EXPECT_EQ(largest, 25.0);
+}
+
 }  // namespace
 }  // namespace pbm
