@@ -90,12 +90,13 @@ inline json full_scene() {
          "shape": {"kind": "box", "size": [0.2, 0.1, 0.05]}, "mass": 2},
         {"name": "upper", "parent": "base",
          "joint": {"kind": "revolute", "axis": [0, 2, 0], "position": [0, 0, 0.05],
-                   "damping": 0.1, "q0": [0.3], "v0": [1]},
+                   "damping": 0.1, "stiffness": 5, "rest": [0.1], "q0": [0.3], "v0": [1]},
          "shape": {"kind": "capsule", "size": [0.04, 0.04, 0.15], "center": [0, 0, 0.2]},
          "density": 900, "color": [0.2, 0.4, 0.6],
          "sites": [{"name": "elbow", "position": [0, 0, 0.4]},
                    {"position": [0, 0.04, 0.2], "orientation": [0, 1, 0, 0]}]},
         {"parent": "upper", "joint": {"kind": "spherical", "position": [0, 0, 0.4],
+                                      "stiffness": 2, "rest": [1, 0, 0, 0],
                                       "q0": [2, 0, 0, 0]},
          "shape": {"kind": "sphere", "size": [0.05, 0.05, 0.05]}},
         {"parent": "upper", "joint": {"kind": "universal", "axis": [1, 0, 0],
@@ -264,6 +265,8 @@ inline void expect_same_scene(const Scene& a, const Scene& b) {
       EXPECT_EQ(x.joint.position, y.joint.position);
       EXPECT_EQ(x.joint.orientation, y.joint.orientation);
       EXPECT_EQ(x.joint.damping, y.joint.damping);
+      EXPECT_EQ(x.joint.stiffness, y.joint.stiffness);
+      EXPECT_EQ(x.joint.rest, y.joint.rest);
       EXPECT_EQ(x.joint.q0, y.joint.q0);
       EXPECT_EQ(x.joint.v0, y.joint.v0);
       EXPECT_EQ(x.shape.kind, y.shape.kind);

@@ -157,6 +157,52 @@ TEST(FiguresWorld, ABodyBesideAFigureMovesAsItDoesAlone) {
   EXPECT_NE(b.state.q.tail(b.model.figures[0].model.n_q), b.model.figures[0].q0);
 }
 
+// A box on a sprung revolute joint about z, without gravity, released 0.2 rad from its spring's
+// rest 0.1 rad: a torsional oscillator, q = 0.1 + 0.2 cos(sqrt(k / I_zz) t).
+TEST(FiguresWorld, AJointSpringOscillatesAtItsClosedFormFrequency) {
+  const Scene scene = parse_scene(
+      R"({"gravity": [0, 0, 0], "solver": {"dt": 0.001, "fps": 50, "integrator": "rk4"},
+          "figures": [{"segments": [{"joint": {"stiffness": 3, "rest": [0.1], "q0": [0.3]},
+          "shape": {"kind": "box", "size": [0.3, 0.1, 0.05]}}]}]})",
+      "torsion.json");
+  Simulation sim(scene);
+  const SegmentShapeDef& shape = scene.figures[0].segments[0].shape;
+  const Real I = shape_inertia(shape, 1000 * shape_volume(shape))(2, 2);
+  const Real w = std::sqrt(3 / I);
+  EXPECT_NEAR(sim.stats.elastic, 0.5 * 3 * 0.2 * 0.2, 1e-15);
+  Real worst = 0;
+  for (int frame = 0; frame < 100; ++frame) {
+    ASSERT_TRUE(advance_frame(sim).ok);
+    worst = std::max(worst, std::abs(sim.state.q[0] - (0.1 + 0.2 * std::cos(w * sim.state.time))));
+  }
+  std::printf("torsion spring: period %.4f s, worst |q - closed form| %.2e rad\n",
+              2 * std::numbers::pi / w, worst);
+  EXPECT_LT(worst, 1e-8);
+}
+
+// A spherical joint's spring keeps kinetic plus spring energy (no gravity, RK4): a spring of the
+// wrong sign would trade them the other way, and one that is not the gradient of k |theta|^2 / 2
+// would drift.
+TEST(FiguresWorld, ASphericalSpringKeepsItsEnergy) {
+  Simulation sim(parse_scene(
+      R"({"gravity": [0, 0, 0], "solver": {"dt": 0.001, "fps": 50, "integrator": "rk4"},
+          "figures": [{"segments": [{"joint": {"kind": "spherical", "stiffness": 4,
+          "rest": [0.9, 0.1, 0.3, 0], "q0": [1, 0.4, -0.2, 0.3], "v0": [0.5, -1, 2]},
+          "shape": {"kind": "box", "size": [0.3, 0.15, 0.05], "center": [0.2, 0, 0]}}]}]})",
+      "ball.json"));
+  const Real e0 = sim.stats.kinetic + sim.stats.elastic;
+  Real drift = 0, largest_elastic = 0;
+  for (int frame = 0; frame < 150; ++frame) {
+    ASSERT_TRUE(advance_frame(sim).ok);
+    drift = std::max(drift, std::abs(sim.stats.kinetic + sim.stats.elastic - e0));
+    largest_elastic = std::max(largest_elastic, sim.stats.elastic);
+  }
+  std::printf("spherical spring: energy %.4f J, spring energy up to %.4f J, drift %.2e J\n", e0,
+              largest_elastic, drift);
+  EXPECT_GT(largest_elastic, 0.1 * e0);
+  EXPECT_LT(drift, 1e-8 * e0);
+}
+
 TEST(FiguresWorld, RunsAreBitIdentical) {
   Simulation a(parse_scene(chain_scene(6, "rk45"), "chain.json"));
   Simulation b(parse_scene(chain_scene(6, "rk45"), "chain.json"));

@@ -29,6 +29,8 @@ TEST(SceneFiguresJson, SegmentsJointsShapesAndSitesWithDefaults) {
   EXPECT_EQ(upper.parent, "base");
   EXPECT_EQ(upper.joint.axis, Vec3(0, 1, 0));  // normalized on load
   EXPECT_EQ(upper.joint.damping, 0.1);
+  EXPECT_EQ(upper.joint.stiffness, 5);
+  EXPECT_EQ(upper.joint.rest, std::vector<Real>{0.1});
   EXPECT_EQ(upper.shape.kind, SegmentShapeKind::capsule);
   EXPECT_EQ(upper.mass, 0);  // from the density
   EXPECT_EQ(upper.density, 900);
@@ -122,6 +124,18 @@ TEST(SceneFiguresJsonErrors, ErrorsNameTheirPath) {
        "figures[0].segments[0].color[1]",
        "must be in [0, 1]"},
       {{{{"wing", 1}}}, "figures[0].segments[0].wing", "unknown key"},
+      {{{{"joint", {{"stiffness", -1}}}}},
+       "figures[0].segments[0].joint.stiffness",
+       "must be >= 0"},
+      {{{{"joint", {{"kind", "free"}, {"stiffness", 1}}}}},
+       "figures[0].segments[0].joint.stiffness",
+       "not valid for a free joint"},
+      {{{{"joint", {{"stiffness", 1}, {"rest", {0.1, 0.2}}}}}},
+       "figures[0].segments[0].joint.rest",
+       "needs 1 numbers"},
+      {{{{"joint", {{"kind", "spherical"}, {"rest", {0, 0, 0, 0}}}}}},
+       "figures[0].segments[0].joint.rest",
+       "the quaternion must be nonzero"},
   };
   for (const auto& [segments, path, message] : cases) {
     expect_error(json{{"figures", {{{"segments", segments}}}}}, path, message);

@@ -287,7 +287,9 @@ TEST(SceneFormat, SchemaForbidsTheKeysOfOtherKinds) {
       }
     }
   }
-  EXPECT_EQ(checked, 8);  // axis and axis2 on spherical, fixed, free; axis2 on the two 1-DOF
+  // axis and axis2 on spherical, fixed, free; axis2 on the two 1-DOF; stiffness and rest on fixed
+  // and free.
+  EXPECT_EQ(checked, 12);
 }
 
 TEST(SceneFormat, SchemaAcceptsWhatTheParserWritesAndRejectsWhatItRejects) {

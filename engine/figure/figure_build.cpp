@@ -128,6 +128,31 @@ CompiledFigure build_figure_model(const FigureDef& def, const std::string& file,
       throw Error(file, at + ".joint.damping", "must be finite and >= 0");
     }
     s.damping = jd.damping;
+    if (!(jd.stiffness >= 0) || !std::isfinite(jd.stiffness)) {
+      throw Error(file, at + ".joint.stiffness", "must be finite and >= 0");
+    }
+    const bool sprung = has_axis || jd.kind == JointKind::spherical;
+    if (jd.stiffness > 0 && !sprung) {
+      throw Error(file, at + ".joint.stiffness", "a fixed or free joint has no spring");
+    }
+    s.stiffness = jd.stiffness;
+    s.rest = jd.kind == JointKind::spherical ? Vec4(1, 0, 0, 0) : Vec4::Zero();
+    if (!jd.rest.empty()) {
+      const int n_rest = jd.kind == JointKind::spherical ? 4 : joint_v_size(jd.kind);
+      if (!sprung || static_cast<int>(jd.rest.size()) != n_rest) {
+        throw Error(file, at + ".joint.rest",
+                    sprung ? "needs " + std::to_string(n_rest) + " numbers for this joint"
+                           : std::string("a fixed or free joint has no spring"));
+      }
+      for (int k = 0; k < n_rest; ++k) s.rest[k] = jd.rest[k];
+      if (!s.rest.allFinite()) throw Error(file, at + ".joint.rest", "must be finite");
+      if (jd.kind == JointKind::spherical) {
+        if (!(s.rest.norm() > 1e-12)) {
+          throw Error(file, at + ".joint.rest", "the quaternion must be nonzero");
+        }
+        s.rest.normalize();
+      }
+    }
     // Mass and inertia from the geometry: the shape's inertia turned into the segment's axes.
     const SegmentShapeDef& shape = d.shape;
     if (!finite(shape.size) || !(shape.size.x() > 0) ||

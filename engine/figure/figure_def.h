@@ -38,8 +38,12 @@ struct JointDef {
   Vec3 position = Vec3::Zero();         // the joint frame's origin in the parent's frame [m]
   Vec4 orientation = Vec4(1, 0, 0, 0);  // the joint frame's axes in the parent's (w, x, y, z)
   Real damping = 0;                     // joint damping [N m s/rad or N s/m], tau = -damping qdot
-  std::vector<Real> q0;                 // initial q (empty: at rest; a quaternion as w, x, y, z)
-  std::vector<Real> v0;                 // initial v (empty: zero)
+  // A joint spring toward `rest` [N m/rad or N/m]: tau = -stiffness (q - rest) per DOF; on a
+  // spherical joint, -stiffness times the rotation vector from the rest orientation.
+  Real stiffness = 0;
+  std::vector<Real> rest;  // the spring's rest q (empty: the joint at rest, as q0)
+  std::vector<Real> q0;    // initial q (empty: at rest; a quaternion as w, x, y, z)
+  std::vector<Real> v0;    // initial v (empty: zero)
 };
 
 // An attachment frame on a segment (sec. 15.1.1), for joints of children, actuators and drawing.

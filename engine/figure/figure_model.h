@@ -23,8 +23,12 @@ struct SegmentModel {
   SpatialTransform X_tree;  // joint_X_parent: the joint's frame (a parent site) from the parent's
   SpatialInertia inertia;   // about the segment's frame; m > 0, I_c symmetric positive definite
   Real damping = 0;         // joint damping: tau = -damping qdot [N m s/rad or N s/m]
-  int q_offset = 0;         // first entry of the joint's q in the figure's q
-  int v_offset = 0;         // first entry of the joint's v in the figure's v
+  // The joint's spring (figure/figure_def.h, JointDef::stiffness): its stiffness and rest q
+  // (revolute, prismatic: rest[0]; universal: rest[0], rest[1]; spherical: a unit quaternion).
+  Real stiffness = 0;
+  Vec4 rest = Vec4(1, 0, 0, 0);
+  int q_offset = 0;  // first entry of the joint's q in the figure's q
+  int v_offset = 0;  // first entry of the joint's v in the figure's v
 };
 
 struct FigureModel {

@@ -20,6 +20,7 @@ constexpr Real kMaxControllers = 6 * kMaxSegments;  // one per DOF
 constexpr std::uint32_t kHasAxis =
     kind_bit(JointKind::revolute) | kind_bit(JointKind::prismatic) | kind_bit(JointKind::universal);
 constexpr std::uint32_t kUniversal = kind_bit(JointKind::universal);
+constexpr std::uint32_t kHasSpring = kHasAxis | kind_bit(JointKind::spherical);
 
 // A joint's q0 or v0: as many numbers as the joint has coordinates (checked when the figure is
 // compiled, which knows the kind); empty, the default, is not written.
@@ -65,6 +66,20 @@ constexpr auto kJointFields = std::to_array<Field<JointDef>>({
                                .unit = "N m s/rad or N s/m",
                                .range = kNonNegative,
                                .description = "Joint damping: tau = -damping q-dot."}),
+    value<&JointDef::stiffness>(
+        {.key = "stiffness",
+         .unit = "N m/rad or N/m",
+         .range = kNonNegative,
+         .kinds = kHasSpring,
+         .description = "A joint spring toward rest: tau = -stiffness (q - rest) (spherical: "
+                        "times the rotation vector from the rest orientation)."}),
+    joint_numbers<&JointDef::rest>(
+        {.key = "rest",
+         .unit = "rad or m",
+         .kinds = kHasSpring,
+         .default_note = "at rest",
+         .description = "The spring's rest coordinates, as many as q0 has (spherical: a "
+                        "quaternion w, x, y, z)."}),
     joint_numbers<&JointDef::q0>(
         {.key = "q0",
          .unit = "rad or m",

@@ -23,7 +23,7 @@ struct BodyFrameStats {
 
 struct FigureFrameStats {
   Real kinetic = 0, potential = 0;  // [J]; potential: gravity's
-  Real elastic = 0;                 // the contact springs' [J]
+  Real elastic = 0;                 // the joint springs' and the contact springs' [J]
   Real work = 0;                    // the work its actuators have done since the start [J]
   int contacts = 0;                 // contact points touching an obstacle
   // Each controller of CompiledFigure::controllers at the measured state (figs. 15.7, 15.8).

@@ -7,6 +7,7 @@
 #include "figure/articulated_body.h"
 #include "figure/figure_impact.h"
 #include "figure/figure_kinematics.h"
+#include "figure/joint_springs.h"
 #include "figure/segment_probes.h"
 #include "sim/stages_figure_control.h"
 
@@ -245,6 +246,7 @@ void figure_dynamics(const RateContext& c) {
     const CompiledFigure& compiled = c.model.figures[f];
     const Real* v = v_of(figure, c.v);
     joint_damping(figure, v, fw.tau.data());
+    add_joint_spring_forces(figure, q_of(figure, c.q), fw.tau.data());
     // The explicit controllers' forces (the controllers stage ran before).
     if (!compiled.controllers.empty()) fw.tau.head(figure.n_v) += fw.control[f].tau;
     // Gravity as the base's acceleration, at its value of the moment (tracks may drive it); the
@@ -296,7 +298,8 @@ void measure_figures(const Model& model, const State& state, Workspace& ws, Fram
       const Vec3 centre = fw.world[i].r + fw.world[i].E.transpose() * I.c;
       out.potential -= I.m * ws.drive.gravity.dot(centre);
     }
-    out.elastic = 0;
+    // The joint springs' energy, then the contact springs' below.
+    out.elastic = joint_spring_energy(figure, q_of(figure, state.q));
     out.contacts = 0;
     measure_figure_controllers(model.figures[f], state, out);
     if (!figure_contacts_present(model)) continue;
