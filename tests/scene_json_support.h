@@ -84,7 +84,8 @@ inline json full_scene() {
     ],
     "figures": [
       {"name": "arm", "restitution": 0.3, "impact_speed": 0.2, "contact_stiffness": 5e4,
-       "contact_damping": 50, "segments": [
+       "contact_damping": 50, "self_collisions": false, "figure_collisions": false,
+       "friction": 0.7, "non_colliding": [{"a": "upper", "b": "segment5"}], "segments": [
         {"name": "base", "joint": {"kind": "free", "position": [0, 0, 1],
                                    "q0": [0, 0, 1, 2, 0, 0, 0], "v0": [0, 0, 1, 0.5, 0, 0]},
          "shape": {"kind": "box", "size": [0.2, 0.1, 0.05]}, "mass": 2},
@@ -253,6 +254,14 @@ inline void expect_same_scene(const Scene& a, const Scene& b) {
     EXPECT_EQ(a.figures[f].impact_speed, b.figures[f].impact_speed);
     EXPECT_EQ(a.figures[f].contact_stiffness, b.figures[f].contact_stiffness);
     EXPECT_EQ(a.figures[f].contact_damping, b.figures[f].contact_damping);
+    EXPECT_EQ(a.figures[f].self_collisions, b.figures[f].self_collisions);
+    EXPECT_EQ(a.figures[f].figure_collisions, b.figures[f].figure_collisions);
+    EXPECT_EQ(a.figures[f].friction, b.figures[f].friction);
+    ASSERT_EQ(a.figures[f].non_colliding.size(), b.figures[f].non_colliding.size());
+    for (std::size_t k = 0; k < a.figures[f].non_colliding.size(); ++k) {
+      EXPECT_EQ(a.figures[f].non_colliding[k].a, b.figures[f].non_colliding[k].a);
+      EXPECT_EQ(a.figures[f].non_colliding[k].b, b.figures[f].non_colliding[k].b);
+    }
     ASSERT_EQ(a.figures[f].segments.size(), b.figures[f].segments.size());
     for (std::size_t i = 0; i < a.figures[f].segments.size(); ++i) {
       const SegmentDef& x = a.figures[f].segments[i];

@@ -9,6 +9,7 @@
 
 #include "figure/figure_impact.h"
 #include "figure/figure_kinematics.h"
+#include "figure_momentum.h"
 
 namespace pbm {
 namespace {
@@ -72,20 +73,7 @@ Vec3 world_point(const FigureModel& figure, const VecX& q, int segment, const Ve
   return world[segment].r + world[segment].E.transpose() * p;
 }
 
-// Total spatial momentum about the world origin, [angular; linear].
-Vec6 momentum(const FigureModel& figure, const VecX& q, const VecX& v) {
-  FigureWorkspace ws;
-  size_figure_workspace(figure, ws);
-  figure_kinematics(figure, q.data(), v.data(), ws);
-  std::vector<SpatialTransform> world;
-  segment_world_transforms(figure, ws, world);
-  Vec6 total = Vec6::Zero();
-  for (int i = 0; i < figure.size(); ++i) {
-    const ForceVector h = force_from_vec6(ws.inertia[i] * ws.v[i]);
-    total += to_vec6(transform_force(inverse(world[i]), h));
-  }
-  return total;
-}
+using test::momentum;
 
 TEST(FigureImpact, ContactPointLeavesWithRestitutionTimesItsApproach) {
   const FigureModel figure = free_chain(3);
@@ -102,7 +90,7 @@ TEST(FigureImpact, ContactPointLeavesWithRestitutionTimesItsApproach) {
       ASSERT_LT(before.z(), 0);
       ImpactWorkspace ws;
       VecX v_after = v;
-      const ImpactFigure f{&figure, &q, &v_after};
+      const ImpactFigure f{&figure, q.data(), v_after.data()};
       const ImpactContact contact{.figure_a = 0, .segment_a = tip, .point = point};
       const ImpactResult r =
           resolve_impact({&f, 1}, {&contact, 1}, {.restitution = e, .friction = friction}, ws);
@@ -145,7 +133,7 @@ TEST(FigureImpact, TwoFiguresConserveLinearAndAngularMomentum) {
                                        .segment_b = 0,
                                        .point = p2,
                                        .normal = Vec3(-1, 0.1, 0).normalized()}};
-    const ImpactFigure figures[] = {{&a, &qa, &va}, {&b, &qb, &vb}};
+    const ImpactFigure figures[] = {{&a, qa.data(), va.data()}, {&b, qb.data(), vb.data()}};
     ImpactWorkspace ws;
     const ImpactResult r = resolve_impact(
         figures, contacts, {.restitution = 0.5, .friction = friction, .mu = 0.3}, ws);
@@ -176,7 +164,7 @@ TEST(FigureImpact, JointImpulsesHaveNoComponentAlongTheJointAxes) {
   const ImpactContact contacts[] = {
       {.segment_a = tip, .point = point},
       {.segment_a = 2, .point = point2, .normal = Vec3(0.2, 0, 1).normalized()}};
-  const ImpactFigure f{&figure, &q, &v};
+  const ImpactFigure f{&figure, q.data(), v.data()};
   ImpactWorkspace ws;
   const ImpactResult r = resolve_impact(
       {&f, 1}, contacts, {.restitution = 0.3, .friction = ImpactFriction::sticking}, ws);
@@ -218,7 +206,7 @@ TEST(FigureImpact, CoulombConeLimitsTheTangentialImpulse) {
   for (Real mu : {0.2, 5.0}) {
     VecX v = VecX::Zero(6);
     v.tail<3>() << 3.0, 0.0, -1.0;  // body-frame v_O: sliding and falling
-    const ImpactFigure f{&figure, &q, &v};
+    const ImpactFigure f{&figure, q.data(), v.data()};
     const ImpactContact contact{.point = point};
     ImpactWorkspace ws;
     const ImpactResult r =

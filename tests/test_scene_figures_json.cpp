@@ -146,6 +146,20 @@ TEST(SceneFiguresJsonErrors, ErrorsNameTheirPath) {
                "figures[0].contact_stiffness", "must be > 0");
   expect_error(json{{"figures", {{{"segments", json::array()}}}}}, "figures[0].segments",
                "at least one segment");
+  expect_error(json{{"figures", {{{"friction", -0.1}, {"segments", {json::object()}}}}}},
+               "figures[0].friction", "must be >= 0");
+  // Pairs that never collide name two different segments of the figure.
+  const json pair_of = {{{"name", "a"}}, {{"name", "b"}, {"parent", "a"}}};
+  const std::vector<std::tuple<json, std::string, std::string>> pairs = {
+      {{{"a", "a"}, {"b", "c"}}, "figures[0].non_colliding[0].b", "no segment is named 'c'"},
+      {{{"a", "x"}, {"b", "b"}}, "figures[0].non_colliding[0].a", "no segment is named 'x'"},
+      {{{"a", "b"}, {"b", "b"}}, "figures[0].non_colliding[0].b", "names the same segment"},
+      {{{"a", "b"}}, "figures[0].non_colliding[0].b", "required"},
+  };
+  for (const auto& [pair, path, message] : pairs) {
+    expect_error(json{{"figures", {{{"segments", pair_of}, {"non_colliding", {pair}}}}}}, path,
+                 message);
+  }
   // Controllers: each names a DOF of a single-axis joint once, with gains in range.
   const json two = {{{"name", "a"}, {"joint", joint}},
                     {{"name", "b"}, {"parent", "a"}, {"joint", {{"kind", "spherical"}}}}};

@@ -73,6 +73,39 @@ Mat3 shape_inertia(const SegmentShapeDef& shape, Real m) {
   return Mat3::Zero();
 }
 
+namespace {
+
+// CompiledFigure::self_pairs: every pair of segments but a segment with itself, its parent or its
+// children (they touch at their joint by design) and the pairs named in non_colliding.
+std::vector<std::uint8_t> self_collision_pairs(const FigureDef& def, const FigureModel& figure,
+                                               const std::unordered_map<std::string, int>& index,
+                                               const std::string& file, const std::string& path) {
+  const int n = figure.size();
+  std::vector<std::uint8_t> pairs(static_cast<std::size_t>(n * n), def.self_collisions ? 1 : 0);
+  const auto clear = [&](int a, int b) { pairs[a * n + b] = pairs[b * n + a] = 0; };
+  for (int i = 0; i < n; ++i) {
+    clear(i, i);
+    if (figure.segments[i].parent >= 0) clear(i, figure.segments[i].parent);
+  }
+  for (std::size_t k = 0; k < def.non_colliding.size(); ++k) {
+    const std::string at = path + ".non_colliding[" + std::to_string(k) + "]";
+    const auto find = [&](const std::string& name, const char* key) {
+      const auto found = index.find(name);
+      if (found == index.end())
+        throw Error(file, at + "." + key, "no segment is named '" + name + "'");
+      return found->second;
+    };
+    const int a = find(def.non_colliding[k].a, "a"), b = find(def.non_colliding[k].b, "b");
+    if (a == b) throw Error(file, at + ".b", "names the same segment as a");
+    clear(a, b);
+  }
+  if (!(std::isfinite(def.friction) && def.friction >= 0))
+    throw Error(file, path + ".friction", "must be finite and >= 0");
+  return pairs;
+}
+
+}  // namespace
+
 CompiledFigure build_figure_model(const FigureDef& def, const std::string& file,
                                   const std::string& path) {
   CompiledFigure out;
@@ -204,6 +237,7 @@ CompiledFigure build_figure_model(const FigureDef& def, const std::string& file,
     }
   }
   figure_normalize(figure, out.q0.data());
+  out.self_pairs = self_collision_pairs(def, figure, index, file, path);
   out.controllers = compile_figure_controllers(def, figure, file, path);
   out.n_control = controller_state_size(out.controllers);
   explicit_servo_limit(out);

@@ -3,6 +3,7 @@
 // the initial q and v. Every refusal names the file and the JSON path of the field.
 #pragma once
 
+#include <cstdint>
 #include <limits>
 #include <string>
 
@@ -31,6 +32,11 @@ struct CompiledFigure {
   Real servo_step_limit = std::numeric_limits<Real>::infinity();
   int servo_limiting = -1;
   Real servo_inertia = 0;
+  // Which of its segments' pairs may collide (sec. 15.3), n x n and symmetric, row-major: not a
+  // segment with itself, its parent or its children, nor a non_colliding pair; all zero without
+  // self_collisions. sim/model.cpp also clears the pairs that overlap at the initial pose.
+  std::vector<std::uint8_t> self_pairs;
+  bool collides(int a, int b) const { return self_pairs[a * model.size() + b] != 0; }
 };
 
 // `path` is the figure's JSON path ("figures[0]").

@@ -64,6 +64,11 @@ struct SegmentDef {
   Vec3 color = Vec3(0.8, 0.75, 0.6);
 };
 
+// Two segments of one figure that never collide (by name).
+struct SegmentPairDef {
+  std::string a, b;
+};
+
 struct FigureDef {
   std::string name;
   std::vector<SegmentDef> segments;
@@ -75,6 +80,15 @@ struct FigureDef {
   Real impact_speed = 0.1;       // [m/s], >= 0: slower approaches are left to the springs
   Real contact_stiffness = 2e4;  // [N/m] per contact point, > 0
   Real contact_damping = 200;    // [N s/m] per contact point, >= 0
+  // Collisions between segments (sec. 15.3), in the same two stages: of this figure with each
+  // other (never a segment with its parent or its children, nor the pairs in non_colliding), and
+  // with other figures' segments unless either figure turns them off. Two figures' contact
+  // combines their settings: the smaller restitution, impact_speed, stiffness and damping, and
+  // the geometric mean of their friction.
+  bool self_collisions = true;
+  bool figure_collisions = true;
+  std::vector<SegmentPairDef> non_colliding;
+  Real friction = 0.5;  // Coulomb's mu between segments, >= 0
   // Joint controllers (sec. 15.4), at most one per DOF.
   std::vector<ControllerDef> controllers;
 };

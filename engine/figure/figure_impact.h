@@ -13,6 +13,7 @@
 // Delassus matrix from the equalities' clamped solution.
 #pragma once
 
+#include <Eigen/QR>
 #include <span>
 #include <vector>
 
@@ -24,8 +25,8 @@ namespace pbm {
 // A figure and its state as the impact sees it: positions read, velocities changed in place.
 struct ImpactFigure {
   const FigureModel* model = nullptr;
-  const VecX* q = nullptr;
-  VecX* v = nullptr;
+  const Real* q = nullptr;  // n_q
+  Real* v = nullptr;        // n_v
 };
 
 struct ImpactContact {
@@ -48,19 +49,44 @@ struct ImpactSettings {
 };
 
 struct ImpactResult {
-  std::vector<Vec3> impulses;  // world impulse on segment a at each contact [N s]
-  bool projected = false;      // the equalities' solution broke p_n >= 0 or the cone
+  std::span<const Vec3> impulses;  // world impulse on segment a at each contact [N s] (in ws)
+  bool projected = false;          // the equalities' solution broke p_n >= 0 or the cone
 };
 
-// Scratch of resolve_impact, one FigureWorkspace per figure.
+// Impacts of up to kImpactContactsInPlace contacts are solved on matrices of fixed capacity, so
+// the step does not allocate; larger ones take the same steps on heap matrices.
+inline constexpr int kImpactContactsInPlace = 32;
+inline constexpr int kImpactRowsInPlace = 3 * kImpactContactsInPlace;
+using ImpactMatrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor,
+                                   kImpactRowsInPlace, kImpactRowsInPlace>;
+using ImpactVector = Eigen::Matrix<Real, Eigen::Dynamic, 1, Eigen::ColMajor, kImpactRowsInPlace, 1>;
+
+// The contact-space part of an impact: the Delassus matrix W, the contact velocities before (u),
+// after (target) and the impulses p, 3 per contact; the frictionless normal system A p_n = b.
+template <class Matrix, class Vector>
+struct ImpactSystem {
+  Matrix W, A;
+  Vector u, target, p, b, p_n;
+  Eigen::CompleteOrthogonalDecomposition<Matrix> cod;
+};
+
+// Scratch of resolve_impact. Its storage only grows: once it has held an impact of a size, an
+// impact of that size or smaller allocates nothing (reserve_impact_workspace sizes it ahead).
 struct ImpactWorkspace {
   std::vector<FigureWorkspace> figures;
-  std::vector<MatX> H;       // joint-space inertia of each figure
-  std::vector<MatX> J;       // 3 m x n_v contact Jacobian of each figure
-  std::vector<MatX> HinvJt;  // H^-1 J^T
-  MatX W;                    // 3 m x 3 m Delassus matrix
-  VecX u;                    // relative contact velocities before, 3 m
+  std::vector<std::vector<SpatialTransform>> world;
+  // Per figure: its joint-space inertia H (n_v x n_v, then its Cholesky factor), the contact
+  // Jacobian J (3 m x n_v) and H^-1 J^T (n_v x 3 m), column-major.
+  std::vector<std::vector<Real>> H, J, HinvJt;
+  std::vector<Vec3> impulses;
+  std::vector<ImpactSystem<ImpactMatrix, ImpactVector>> in_place;  // one, on the heap (~0.3 MB)
+  ImpactSystem<MatX, VecX> on_heap;
 };
+
+// Sizes ws for impacts among `figures` figures of up to `segments` segments and n_v DOF each
+// with up to `contacts` contacts, so that such impacts allocate nothing.
+void reserve_impact_workspace(int figures, int segments, int n_v, int contacts,
+                              ImpactWorkspace& ws);
 
 // Changes the figures' velocities by the impact at the contacts.
 ImpactResult resolve_impact(std::span<const ImpactFigure> figures,

@@ -5,9 +5,15 @@
 namespace pbm {
 
 void joint_space_inertia(const FigureModel& figure, const Real* q, FigureWorkspace& ws, MatX& H) {
+  H.resize(figure.n_v, figure.n_v);
+  joint_space_inertia(figure, q, ws, Eigen::Ref<MatX>(H));
+}
+
+void joint_space_inertia(const FigureModel& figure, const Real* q, FigureWorkspace& ws,
+                         Eigen::Ref<MatX> H) {
   const int n = figure.size();
   figure_kinematics(figure, q, nullptr, ws);
-  H.setZero(figure.n_v, figure.n_v);
+  H.setZero();
   // Inward: each segment's composite inertia, the subtree it carries, in its own coordinates.
   for (int i = 0; i < n; ++i) ws.IA[i] = ws.inertia[i];
   for (int i = n - 1; i >= 0; --i) {

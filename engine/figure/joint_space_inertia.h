@@ -10,5 +10,8 @@ namespace pbm {
 
 // H: n_v x n_v, symmetric positive definite; resized if it is not.
 void joint_space_inertia(const FigureModel& figure, const Real* q, FigureWorkspace& ws, MatX& H);
+// The same into a view that already is n_v x n_v (storage the caller keeps).
+void joint_space_inertia(const FigureModel& figure, const Real* q, FigureWorkspace& ws,
+                         Eigen::Ref<MatX> H);
 
 }  // namespace pbm

@@ -255,6 +255,25 @@ constexpr Section<SegmentDef> kSegmentSection{
 
 namespace {
 
+constexpr auto kSegmentPairFields = std::to_array<Field<SegmentPairDef>>({
+    value<&SegmentPairDef::a>(
+        {.key = "a", .required = true, .non_empty = true, .description = "A segment's name."}),
+    value<&SegmentPairDef::b>({.key = "b",
+                               .required = true,
+                               .non_empty = true,
+                               .description = "Another segment's name."}),
+});
+
+}  // namespace
+
+constexpr Section<SegmentPairDef> kSegmentPairSection{
+    .name = "segment_pair", .noun = "segment pair", .fields = kSegmentPairFields};
+
+namespace {
+
+// A figure has at most kMaxSegments (kMaxSegments - 1) / 2 pairs.
+constexpr Real kMaxSegmentPairs = kMaxSegments * (kMaxSegments - 1) / 2;
+
 constexpr auto kFigureFields = std::to_array<Field<FigureDef>>({
     value<&FigureDef::name>({.key = "name", .non_empty = true, .default_note = "figure<i>"}),
     list<&FigureDef::segments, kSegmentSection>({.key = "segments",
@@ -265,7 +284,8 @@ constexpr auto kFigureFields = std::to_array<Field<FigureDef>>({
                                                  .description = "Parents before children."}),
     value<&FigureDef::restitution>({.key = "restitution",
                                     .range = kUnitInterval,
-                                    .description = "e of (15.2) at impacts with obstacles."}),
+                                    .description = "e of (15.2) at impacts (two figures: the "
+                                                   "smaller of theirs)."}),
     value<&FigureDef::impact_speed>(
         {.key = "impact_speed",
          .unit = "m/s",
@@ -281,6 +301,24 @@ constexpr auto kFigureFields = std::to_array<Field<FigureDef>>({
                                         .unit = "N s/m",
                                         .range = kNonNegative,
                                         .description = "Its damper, per contact point."}),
+    value<&FigureDef::self_collisions>(
+        {.key = "self_collisions",
+         .description = "Its segments collide with each other (never a segment with its parent "
+                        "or children, nor the non_colliding pairs, nor pairs that overlap at "
+                        "the initial pose)."}),
+    value<&FigureDef::figure_collisions>(
+        {.key = "figure_collisions",
+         .description = "Its segments collide with other figures' (unless theirs do not)."}),
+    list<&FigureDef::non_colliding, kSegmentPairSection>(
+        {.key = "non_colliding",
+         .limit = kMaxSegmentPairs,
+         .section = "segment_pair",
+         .description = "Pairs of its segments that never collide."}),
+    value<&FigureDef::friction>(
+        {.key = "friction",
+         .range = kNonNegative,
+         .description = "Coulomb's mu between segments (two figures: the geometric mean of "
+                        "theirs); with obstacles, the obstacle's friction holds."}),
     list<&FigureDef::controllers, kControllerSection>(
         {.key = "controllers",
          .limit = kMaxControllers,

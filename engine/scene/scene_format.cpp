@@ -15,7 +15,7 @@ std::vector<SectionDescription> describe_scene_format() {
           describe_section(kTrackSection),        describe_section(kFigureSection),
           describe_section(kSegmentSection),      describe_section(kJointSection),
           describe_section(kSegmentShapeSection), describe_section(kSiteSection),
-          describe_section(kControllerSection)};
+          describe_section(kControllerSection),   describe_section(kSegmentPairSection)};
 }
 
 const SectionDescription* find_section(const std::vector<SectionDescription>& sections,

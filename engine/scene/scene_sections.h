@@ -28,6 +28,7 @@ extern const Section<JointDef> kJointSection;                  // scene_figures_
 extern const Section<SegmentShapeDef> kSegmentShapeSection;    // scene_figures_json.cpp
 extern const Section<SiteDef> kSiteSection;                    // scene_figures_json.cpp
 extern const Section<ControllerDef> kControllerSection;        // scene_figures_json.cpp
+extern const Section<SegmentPairDef> kSegmentPairSection;      // scene_figures_json.cpp
 
 // Whether an obstacle of `kind` has the key (its point is "point", "center" or "position").
 bool obstacle_has_key(ObstacleKind kind, std::string_view key);

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "sim/figure_collisions.h"
 
 namespace pbm {
 namespace {
@@ -158,6 +159,7 @@ Model build_model(const Scene& scene) {
     model.n_q += figure.n_control;
     model.figures.push_back(std::move(figure));
   }
+  settle_initial_segment_overlaps(model);
   for (std::size_t o = 0; o < scene.obstacles.size(); ++o) {
     model.obstacles.push_back(build_obstacle_model(scene.obstacles[o], scene.file,
                                                    "obstacles[" + std::to_string(o) + "]"));

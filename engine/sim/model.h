@@ -46,6 +46,8 @@ struct Model {
   // Articulated figures (ch. 15), each with its initial state; their slices of State follow the
   // bodies' (FigureModel::state_q_offset, state_v_offset).
   std::vector<CompiledFigure> figures;
+  // Some pair of segments may collide (sim/figure_collisions.h).
+  bool segment_collisions = false;
   int n_q = 0, n_v = 0;
   // The longest substep advance_frame may take [s]: solver.dt, or shorter where a body's explicit
   // stability limit (deform/stability_limit.h) with the configured integrator needs it (the

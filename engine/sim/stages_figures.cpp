@@ -80,18 +80,109 @@ void for_each_contact(const FigureModel& figure, const FigureDef& def, const Fig
   }
 }
 
-// The contact stage's force on the segment at a contact point (sec. 15.3): a mild spring-damper
-// along the normal that only pushes, and Coulomb friction mu f_n against the sliding, viscous
-// (the same damper) below the cone so that a resting contact does not chatter.
-Vec3 contact_force(const FigureDef& def, const ContactPoint& c, Real mu) {
+// The contact stage's force at a contact point (sec. 15.3): a mild spring-damper of stiffness k and
+// damping d along the normal that only pushes, and Coulomb friction mu f_n against the sliding,
+// viscous (the same damper) below the cone so that a resting contact does not chatter.
+Vec3 contact_force(Real k, Real d, const ContactPoint& c, Real mu) {
   const Real v_n = c.velocity.dot(c.normal);
-  const Real f_n = std::max(Real(0), def.contact_stiffness * c.depth - def.contact_damping * v_n);
+  const Real f_n = std::max(Real(0), k * c.depth - d * v_n);
   const Vec3 v_t = c.velocity - v_n * c.normal;
   const Real speed = v_t.norm();
-  Vec3 f_t = -def.contact_damping * v_t;
-  if (def.contact_damping * speed > mu * f_n)
-    f_t = speed > 0 ? Vec3(-mu * f_n / speed * v_t) : Vec3::Zero();
+  Vec3 f_t = -d * v_t;
+  if (d * speed > mu * f_n) f_t = speed > 0 ? Vec3(-mu * f_n / speed * v_t) : Vec3::Zero();
   return f_n * c.normal + f_t;
+}
+
+// Adds a world force at a world point to a segment's force in its own frame.
+void add_point_force(const SpatialTransform& X, const Vec3& force, const Vec3& point,
+                     ForceVector& total) {
+  const Vec3 f = X.E * force;
+  const Vec3 local = X.E * (point - X.r);
+  total += ForceVector{local.cross(f), f};
+}
+
+// Every figure's kinematics at (q, v) (v may be null) and its segments' world transforms.
+void all_figure_kinematics(const Model& model, const Real* q, const Real* v, FiguresWorkspace& fw) {
+  for (std::size_t f = 0; f < model.figures.size(); ++f) {
+    const FigureModel& figure = model.figures[f].model;
+    pbm::figure_kinematics(figure, q + figure.state_q_offset,
+                           v ? v + figure.state_v_offset : nullptr, fw.each[f]);
+    segment_world_transforms(figure, fw.each[f], fw.worlds[f]);
+  }
+}
+
+// The velocity of segment a's material relative to segment b's at the contact's point.
+Vec3 relative_velocity(const FiguresWorkspace& fw, const SegmentContact& k) {
+  return segment_point_velocity(fw.worlds[k.figure_a][k.segment_a],
+                                fw.each[k.figure_a].v[k.segment_a], k.point) -
+         segment_point_velocity(fw.worlds[k.figure_b][k.segment_b],
+                                fw.each[k.figure_b].v[k.segment_b], k.point);
+}
+
+// The contact stage between segments: equal and opposite spring-damper forces at each point
+// (after all_figure_kinematics of the rate's q and v).
+void add_segment_contact_forces(const Model& model, FiguresWorkspace& fw) {
+  collect_segment_contacts(model, fw.worlds, fw.collision, fw.segment_contacts);
+  for (const SegmentContact& k : fw.segment_contacts) {
+    const PairContactSettings s =
+        pair_contact_settings(model.scene.figures[k.figure_a], model.scene.figures[k.figure_b]);
+    const Vec3 u = relative_velocity(fw, k);
+    if (u.dot(k.normal) < -s.impact_speed) continue;  // the impact stage's, as with obstacles
+    const Vec3 f =
+        contact_force(s.stiffness, s.damping, {k.point, k.normal, k.depth, u}, s.friction);
+    add_point_force(fw.worlds[k.figure_a][k.segment_a], f, k.point,
+                    fw.contact_forces[k.figure_a][k.segment_a]);
+    add_point_force(fw.worlds[k.figure_b][k.segment_b], -f, k.point,
+                    fw.contact_forces[k.figure_b][k.segment_b]);
+  }
+}
+
+// The impact stage between segments, (15.1)-(15.8): figure pair by figure pair, the points
+// approaching faster than impact_speed have their impact together (a pair within one figure is a
+// figure with two of its own segments in each contact).
+void segment_impacts(const SubstepContext& c) {
+  const Model& model = c.model;
+  FiguresWorkspace& fw = *c.ws.figures;
+  all_figure_kinematics(model, c.state.q.data(), c.state.v.data(), fw);
+  collect_segment_contacts(model, fw.worlds, fw.collision, fw.segment_contacts);
+  const std::vector<SegmentContact>& contacts = fw.segment_contacts;
+  for (std::size_t begin = 0, end = 0; begin < contacts.size(); begin = end) {
+    const int fa = contacts[begin].figure_a, fb = contacts[begin].figure_b;
+    end = begin;
+    while (end < contacts.size() && contacts[end].figure_a == fa && contacts[end].figure_b == fb)
+      ++end;
+    const PairContactSettings s =
+        pair_contact_settings(model.scene.figures[fa], model.scene.figures[fb]);
+    fw.impacts.clear();
+    for (std::size_t k = begin; k < end; ++k) {
+      if (relative_velocity(fw, contacts[k]).dot(contacts[k].normal) >= -s.impact_speed) continue;
+      fw.impacts.push_back({.figure_a = 0,
+                            .segment_a = contacts[k].segment_a,
+                            .figure_b = fa == fb ? 0 : 1,
+                            .segment_b = contacts[k].segment_b,
+                            .point = contacts[k].point,
+                            .normal = contacts[k].normal});
+    }
+    if (fw.impacts.empty()) continue;
+    const int pair[2] = {fa, fb};
+    const int n = fa == fb ? 1 : 2;
+    ImpactFigure figures[2];
+    for (int i = 0; i < n; ++i) {
+      const FigureModel& figure = model.figures[pair[i]].model;
+      figures[i] = {&figure, c.state.q.data() + figure.state_q_offset,
+                    c.state.v.data() + figure.state_v_offset};
+    }
+    resolve_impact(
+        {figures, static_cast<std::size_t>(n)}, fw.impacts,
+        {.restitution = s.restitution, .friction = ImpactFriction::coulomb, .mu = s.friction},
+        fw.impact);
+    // The velocities changed: the next pairs' contacts see them.
+    for (int i = 0; i < n; ++i) {
+      const FigureModel& figure = model.figures[pair[i]].model;
+      pbm::figure_kinematics(figure, c.state.q.data() + figure.state_q_offset,
+                             c.state.v.data() + figure.state_v_offset, fw.each[pair[i]]);
+    }
+  }
 }
 
 // The editor's overlays (drawn on demand): each joint's axes where it sits, a dot at each
@@ -165,37 +256,52 @@ void size_figures(const Model& model, Workspace& ws) {
   }
   fw.q.setZero(n_q);
   fw.v.setZero(n_v);
+  fw.worlds.resize(model.figures.size());
+  // Impacts of up to 16 contacts between two figures allocate nothing.
+  reserve_impact_workspace(model.segment_collisions ? 2 : 1, n_segments, n_v, 16, fw.impact);
+  if (model.segment_collisions) {
+    // Room for every segment touching a few others, so that contacts that come and go do not
+    // allocate during the step (they grow these only in a pile-up beyond it).
+    std::size_t segments = 0;
+    for (const CompiledFigure& f : model.figures) segments += f.model.segments.size();
+    fw.collision.solids.reserve(segments);
+    fw.collision.boxes.reserve(segments);
+    fw.collision.order.reserve(segments);
+    fw.collision.first.reserve(model.figures.size() + 1);
+    fw.collision.pairs.reserve(8 * segments);
+    fw.segment_contacts.reserve(8 * segments);
+    fw.impacts.reserve(8 * segments);
+  }
   size_figure_controllers(model, ws);
 }
 
 bool figure_contacts_present(const Model& model) {
-  return !model.obstacles.empty();
+  return !model.obstacles.empty() || model.segment_collisions;
 }
 
 void figure_contact_forces(const RateContext& c) {
   if (!figure_contacts_present(c.model)) return;
   FiguresWorkspace& fw = *c.ws.figures;
+  all_figure_kinematics(c.model, c.q.data(), c.v.data(), fw);
   for (std::size_t f = 0; f < c.model.figures.size(); ++f) {
     const FigureModel& figure = c.model.figures[f].model;
     const FigureDef& def = c.model.scene.figures[f];
-    FigureWorkspace& w = fw.each[f];
+    const std::vector<SpatialTransform>& world = fw.worlds[f];
     std::vector<ForceVector>& forces = fw.contact_forces[f];
     std::fill(forces.begin(), forces.end(), ForceVector{});
-    pbm::figure_kinematics(figure, q_of(figure, c.q), v_of(figure, c.v), w);
-    segment_world_transforms(figure, w, fw.world);
-    for_each_contact(figure, def, w, fw.world, c.ws.drive.obstacles,
+    for_each_contact(figure, def, fw.each[f], world, c.ws.drive.obstacles,
                      [&](int i, const ContactPoint& contact, const ObstacleModel& obstacle) {
                        // A point arriving faster than impact_speed is the impact stage's, at the
                        // step's end: the springs act only after the impact (sec. 15.3), else
                        // their damper would take the arrival's speed before the e-law sees it.
                        if (contact.velocity.dot(contact.normal) < -def.impact_speed) return;
-                       // The force at the point, as a force on the segment in its own frame.
-                       const SpatialTransform& X = fw.world[i];
-                       const Vec3 force = X.E * contact_force(def, contact, obstacle.friction);
-                       const Vec3 local = X.E * (contact.point - X.r);
-                       forces[i] += ForceVector{local.cross(force), force};
+                       add_point_force(world[i],
+                                       contact_force(def.contact_stiffness, def.contact_damping,
+                                                     contact, obstacle.friction),
+                                       contact.point, forces[i]);
                      });
   }
+  if (c.model.segment_collisions) add_segment_contact_forces(c.model, fw);
 }
 
 void figure_impacts(const SubstepContext& c) {
@@ -224,19 +330,18 @@ void figure_impacts(const SubstepContext& c) {
                          }
                        });
       if (fw.impacts.empty()) continue;
-      VecX q = fw.q.head(figure.n_q), v = fw.v.head(figure.n_v);
-      const ImpactFigure one{&figure, &q, &v};
+      const ImpactFigure one{&figure, fw.q.data(), fw.v.data()};
       resolve_impact({&one, 1}, fw.impacts,
                      {.restitution = def.restitution,
                       .friction = ImpactFriction::coulomb,
                       .mu = obstacle.friction},
                      fw.impact);
-      fw.v.head(figure.n_v) = v;
-      c.state.v.segment(figure.state_v_offset, figure.n_v) = v;
+      c.state.v.segment(figure.state_v_offset, figure.n_v) = fw.v.head(figure.n_v);
       // The velocities changed: the next obstacle's contacts see them.
       pbm::figure_kinematics(figure, fw.q.data(), fw.v.data(), w);
     }
   }
+  if (c.model.segment_collisions) segment_impacts(c);
 }
 
 void figure_dynamics(const RateContext& c) {
@@ -309,6 +414,17 @@ void measure_figures(const Model& model, const State& state, Workspace& ws, Fram
                        out.elastic += 0.5 * def.contact_stiffness * contact.depth * contact.depth;
                        ++out.contacts;
                      });
+  }
+  if (!model.segment_collisions) return;
+  // The springs between segments: their energy is the first figure's, their points both's.
+  all_figure_kinematics(model, state.q.data(), nullptr, fw);
+  collect_segment_contacts(model, fw.worlds, fw.collision, fw.segment_contacts);
+  for (const SegmentContact& k : fw.segment_contacts) {
+    const PairContactSettings s =
+        pair_contact_settings(model.scene.figures[k.figure_a], model.scene.figures[k.figure_b]);
+    stats.figures[k.figure_a].elastic += 0.5 * s.stiffness * k.depth * k.depth;
+    ++stats.figures[k.figure_a].contacts;
+    if (k.figure_b != k.figure_a) ++stats.figures[k.figure_b].contacts;
   }
 }
 

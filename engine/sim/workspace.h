@@ -15,6 +15,7 @@
 #include "figure/figure_workspace.h"
 #include "figure/stable_pd.h"
 #include "integrate/integrators.h"
+#include "sim/figure_collisions.h"
 #include "sim/frame_stats.h"
 #include "sim/state.h"
 #include "sim/step_stage.h"
@@ -52,6 +53,11 @@ struct FiguresWorkspace {
   std::vector<ImpactContact> impacts;
   ImpactWorkspace impact;
   VecX q, v;  // one figure's slices, for resolve_impact
+  // Collisions between segments (sim/figure_collisions.h): every figure's world transforms at
+  // once, the detection's scratch and its contacts.
+  std::vector<std::vector<SpatialTransform>> worlds;
+  SegmentCollisionScratch collision;
+  std::vector<SegmentContact> segment_contacts;
 };
 
 struct Workspace {

@@ -1,0 +1,135 @@
+#include "collide/convex_contacts.h"
+
+#include <BulletCollision/CollisionDispatch/btBoxBoxDetector.h>
+#include <BulletCollision/CollisionShapes/btBoxShape.h>
+#include <BulletCollision/CollisionShapes/btCapsuleShape.h>
+#include <BulletCollision/CollisionShapes/btCylinderShape.h>
+#include <BulletCollision/CollisionShapes/btSphereShape.h>
+#include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
+#include <BulletCollision/NarrowPhaseCollision/btGjkPairDetector.h>
+#include <BulletCollision/NarrowPhaseCollision/btPointCollector.h>
+#include <BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h>
+#include <algorithm>
+#include <variant>
+
+namespace pbm {
+namespace {
+
+btVector3 bt(const Vec3& v) {
+  return {static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()), static_cast<btScalar>(v.z())};
+}
+Vec3 ours(const btVector3& v) {
+  return {v.x(), v.y(), v.z()};
+}
+
+btTransform transform_of(const ConvexSolid& s) {
+  const Mat3& R = s.rotation;
+  const btMatrix3x3 basis(static_cast<btScalar>(R(0, 0)), static_cast<btScalar>(R(0, 1)),
+                          static_cast<btScalar>(R(0, 2)), static_cast<btScalar>(R(1, 0)),
+                          static_cast<btScalar>(R(1, 1)), static_cast<btScalar>(R(1, 2)),
+                          static_cast<btScalar>(R(2, 0)), static_cast<btScalar>(R(2, 1)),
+                          static_cast<btScalar>(R(2, 2)));
+  return btTransform(basis, bt(s.center));
+}
+
+// Bullet's shape for a solid. Bullet rounds a box's and a cylinder's edges by their collision
+// margin (GJK works on the shape shrunk by it, then adds it back); 1% of the smallest half
+// extent keeps that rounding far below a contact spring's depth.
+using BulletShape =
+    std::variant<std::monostate, btBoxShape, btSphereShape, btCylinderShapeZ, btCapsuleShapeZ>;
+
+btConvexShape& make_shape(const ConvexSolid& s, BulletShape& storage) {
+  const btScalar r = static_cast<btScalar>(s.size.x());
+  const btScalar h = static_cast<btScalar>(s.size.z());
+  switch (s.kind) {
+    case ConvexKind::box: {
+      btBoxShape& box = storage.emplace<btBoxShape>(bt(s.size));
+      box.setMargin(static_cast<btScalar>(0.01 * s.size.minCoeff()));
+      return box;
+    }
+    case ConvexKind::sphere:
+      return storage.emplace<btSphereShape>(r);
+    case ConvexKind::cylinder: {
+      btCylinderShapeZ& cylinder = storage.emplace<btCylinderShapeZ>(btVector3(r, r, h));
+      cylinder.setMargin(0.01f * std::min(r, h));
+      return cylinder;
+    }
+    case ConvexKind::capsule:
+      return storage.emplace<btCapsuleShapeZ>(r, 2 * h);
+  }
+  return storage.emplace<btSphereShape>(r);
+}
+
+// Collects the box-box detector's points: Bullet reports each on b's surface with b's normal
+// (pointing toward a) and a negative distance when they overlap.
+struct Collector final : btDiscreteCollisionDetectorInterface::Result {
+  ConvexContacts* out = nullptr;
+  int count = 0;
+  void setShapeIdentifiersA(int, int) override {}
+  void setShapeIdentifiersB(int, int) override {}
+  void addContactPoint(const btVector3& normal_on_b, const btVector3& point_on_b,
+                       btScalar distance) override {
+    if (!(distance < 0) || count == kMaxConvexContacts) return;
+    const Vec3 n = ours(normal_on_b).normalized();
+    (*out)[count++] = {ours(point_on_b) + 0.5 * distance * n, n, -Real(distance)};
+  }
+};
+
+}  // namespace
+
+int convex_contacts(const ConvexSolid& a, const ConvexSolid& b, ConvexContacts& out) {
+  BulletShape storage_a, storage_b;
+  btConvexShape& shape_a = make_shape(a, storage_a);
+  btConvexShape& shape_b = make_shape(b, storage_b);
+  btDiscreteCollisionDetectorInterface::ClosestPointInput input;
+  input.m_transformA = transform_of(a);
+  input.m_transformB = transform_of(b);
+  if (a.kind == ConvexKind::box && b.kind == ConvexKind::box) {
+    Collector collector;
+    collector.out = &out;
+    btBoxBoxDetector detector(&std::get<btBoxShape>(storage_a), &std::get<btBoxShape>(storage_b));
+    detector.getClosestPoints(input, collector, nullptr);
+    return collector.count;
+  }
+  // A fresh simplex and a fixed first axis on every call: no state carried between calls.
+  btVoronoiSimplexSolver simplex;
+  btGjkEpaPenetrationDepthSolver epa;
+  btGjkPairDetector gjk(&shape_a, &shape_b, &simplex, &epa);
+  btPointCollector closest;
+  gjk.getClosestPoints(input, closest, nullptr);
+  if (!closest.m_hasResult || !(closest.m_distance < 0)) return 0;
+  const Vec3 n = ours(closest.m_normalOnBInWorld).normalized();
+  out[0] = {ours(closest.m_pointInWorld) + 0.5 * closest.m_distance * n, n,
+            -Real(closest.m_distance)};
+  return 1;
+}
+
+Box3 convex_bounds(const ConvexSolid& s) {
+  // Half widths of the solid's box along the world axes: |R| times the shape's half extents
+  // (a box's), plus the radius of its rounding (a capsule's ends, a sphere).
+  Vec3 half = Vec3::Zero();
+  Real round = 0;
+  switch (s.kind) {
+    case ConvexKind::box:
+      half = s.size;
+      break;
+    case ConvexKind::sphere:
+      round = s.size.x();
+      break;
+    case ConvexKind::cylinder:
+      // The caps' discs lie within the box of half extents (r, r, h).
+      half = Vec3(s.size.x(), s.size.x(), s.size.z());
+      break;
+    case ConvexKind::capsule:
+      half = Vec3(0, 0, s.size.z());
+      round = s.size.x();
+      break;
+  }
+  const Vec3 reach = s.rotation.cwiseAbs() * half + Vec3::Constant(round);
+  Box3 box;
+  box.add(s.center - reach);
+  box.add(s.center + reach);
+  return box;
+}
+
+}  // namespace pbm
