@@ -91,7 +91,8 @@ inline json full_scene() {
          "shape": {"kind": "box", "size": [0.2, 0.1, 0.05]}, "mass": 2},
         {"name": "upper", "parent": "base",
          "joint": {"kind": "revolute", "axis": [0, 2, 0], "position": [0, 0, 0.05],
-                   "damping": 0.1, "stiffness": 5, "rest": [0.1], "q0": [0.3], "v0": [1]},
+                   "damping": 0.1, "stiffness": 5, "rest": [0.1], "q0": [0.3], "v0": [1],
+                   "lower": [-1], "upper": [1.5], "limit_restitution": 0.25},
          "shape": {"kind": "capsule", "size": [0.04, 0.04, 0.15], "center": [0, 0, 0.2]},
          "density": 900, "color": [0.2, 0.4, 0.6],
          "sites": [{"name": "elbow", "position": [0, 0, 0.4]},
@@ -276,6 +277,9 @@ inline void expect_same_scene(const Scene& a, const Scene& b) {
       EXPECT_EQ(x.joint.damping, y.joint.damping);
       EXPECT_EQ(x.joint.stiffness, y.joint.stiffness);
       EXPECT_EQ(x.joint.rest, y.joint.rest);
+      EXPECT_EQ(x.joint.lower, y.joint.lower);
+      EXPECT_EQ(x.joint.upper, y.joint.upper);
+      EXPECT_EQ(x.joint.limit_restitution, y.joint.limit_restitution);
       EXPECT_EQ(x.joint.q0, y.joint.q0);
       EXPECT_EQ(x.joint.v0, y.joint.v0);
       EXPECT_EQ(x.shape.kind, y.shape.kind);

@@ -136,6 +136,26 @@ TEST(SceneFiguresJsonErrors, ErrorsNameTheirPath) {
       {{{{"joint", {{"kind", "spherical"}, {"rest", {0, 0, 0, 0}}}}}},
        "figures[0].segments[0].joint.rest",
        "the quaternion must be nonzero"},
+      // Joint limits: both bounds, one per DOF, upper above lower, q0 between.
+      {{{{"joint", {{"lower", {-1}}}}}}, "figures[0].segments[0].joint.upper", "needs 1 number"},
+      {{{{"joint", {{"kind", "universal"}, {"lower", {-1}}, {"upper", {1}}}}}},
+       "figures[0].segments[0].joint.lower",
+       "needs 2 numbers"},
+      {{{{"joint", {{"lower", {0.5}}, {"upper", {0.5}}}}}},
+       "figures[0].segments[0].joint.upper",
+       "greater than lower's"},
+      {{{{"joint", {{"lower", {0.1}}, {"upper", {0.5}}, {"q0", {0.6}}}}}},
+       "figures[0].segments[0].joint.q0",
+       "outside [lower, upper]"},
+      {{{{"joint", {{"lower", {0.1}}, {"upper", {0.5}}}}}},
+       "figures[0].segments[0].joint.lower",
+       "outside [lower, upper]"},
+      {{{{"joint", {{"kind", "spherical"}, {"upper", {1}}}}}},
+       "figures[0].segments[0].joint.upper",
+       "not valid for a spherical joint"},
+      {{{{"joint", {{"limit_restitution", 1.5}}}}},
+       "figures[0].segments[0].joint.limit_restitution",
+       "must be in [0, 1]"},
   };
   for (const auto& [segments, path, message] : cases) {
     expect_error(json{{"figures", {{{"segments", segments}}}}}, path, message);

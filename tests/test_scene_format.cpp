@@ -288,8 +288,8 @@ TEST(SceneFormat, SchemaForbidsTheKeysOfOtherKinds) {
     }
   }
   // axis and axis2 on spherical, fixed, free; axis2 on the two 1-DOF; stiffness and rest on fixed
-  // and free.
-  EXPECT_EQ(checked, 12);
+  // and free; lower, upper and limit_restitution on spherical, fixed, free.
+  EXPECT_EQ(checked, 21);
 }
 
 TEST(SceneFormat, SchemaAcceptsWhatTheParserWritesAndRejectsWhatItRejects) {

@@ -238,6 +238,16 @@ CompiledFigure build_figure_model(const FigureDef& def, const std::string& file,
   }
   figure_normalize(figure, out.q0.data());
   out.self_pairs = self_collision_pairs(def, figure, index, file, path);
+  out.limits = compile_joint_limits(def, figure, file, path);
+  for (const JointLimit& l : out.limits) {
+    const Real q = out.q0[l.q_index];
+    if (q < l.lower || q > l.upper) {
+      throw Error(file,
+                  path + ".segments[" + std::to_string(l.segment) + "].joint." +
+                      (def.segments[l.segment].joint.q0.empty() ? "lower" : "q0"),
+                  "the initial position " + std::to_string(q) + " is outside [lower, upper]");
+    }
+  }
   out.controllers = compile_figure_controllers(def, figure, file, path);
   out.n_control = controller_state_size(out.controllers);
   explicit_servo_limit(out);

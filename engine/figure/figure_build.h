@@ -10,6 +10,7 @@
 #include "control/joint_controller.h"
 #include "figure/figure_def.h"
 #include "figure/figure_model.h"
+#include "figure/joint_limits.h"
 
 namespace pbm {
 
@@ -36,6 +37,9 @@ struct CompiledFigure {
   // segment with itself, its parent or its children, nor a non_colliding pair; all zero without
   // self_collisions. sim/model.cpp also clears the pairs that overlap at the initial pose.
   std::vector<std::uint8_t> self_pairs;
+  // Its joints' limits (figure/joint_limits.h); their springs are sized by sim/model.cpp, which
+  // knows the step.
+  std::vector<JointLimit> limits;
   bool collides(int a, int b) const { return self_pairs[a * model.size() + b] != 0; }
 };
 

@@ -42,8 +42,14 @@ struct JointDef {
   // spherical joint, -stiffness times the rotation vector from the rest orientation.
   Real stiffness = 0;
   std::vector<Real> rest;  // the spring's rest q (empty: the joint at rest, as q0)
-  std::vector<Real> q0;    // initial q (empty: at rest; a quaternion as w, x, y, z)
-  std::vector<Real> v0;    // initial v (empty: zero)
+  // Joint limits (revolute, prismatic, universal): per DOF, q stays within [lower, upper] (both
+  // empty: unlimited). A DOF reaching its limit faster than the figure's impact_speed has an
+  // impact of its own, q-dot+ = -limit_restitution q-dot- on that DOF (15.2); past it, a stiff
+  // spring-damper pushes it back (figure/joint_limits.h).
+  std::vector<Real> lower, upper;  // [rad or m]
+  Real limit_restitution = 0;      // in [0, 1]
+  std::vector<Real> q0;            // initial q (empty: at rest; a quaternion as w, x, y, z)
+  std::vector<Real> v0;            // initial v (empty: zero)
 };
 
 // An attachment frame on a segment (sec. 15.1.1), for joints of children, actuators and drawing.

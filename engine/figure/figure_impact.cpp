@@ -56,13 +56,6 @@ void segment_world_transforms(const FigureModel& figure, const FigureWorkspace& 
 
 namespace {
 
-// Grows storage to hold rows x cols and views it as that matrix.
-Eigen::Map<MatX> matrix_in(std::vector<Real>& storage, int rows, int cols) {
-  const std::size_t size = static_cast<std::size_t>(rows) * static_cast<std::size_t>(cols);
-  if (storage.size() < size) storage.resize(size);
-  return {storage.data(), rows, cols};
-}
-
 // The impulses p (3 per contact) that take the contact velocities u to the contact law's, with
 // W the Delassus matrix: the book's equalities, projected where they break p_n >= 0 or the cone.
 // Returns whether it projected.
@@ -166,15 +159,15 @@ bool impact_in(std::span<const ImpactFigure> figures, std::span<const ImpactCont
   sys.u.setZero(3 * m);
   for (std::size_t f = 0; f < figures.size(); ++f) {
     const int n_v = figures[f].model->n_v;
-    const Eigen::Map<MatX> J = matrix_in(ws.J[f], 3 * m, n_v);
-    const Eigen::Map<MatX> HinvJt = matrix_in(ws.HinvJt[f], n_v, 3 * m);
+    const Eigen::Map<MatX> J = grown_matrix(ws.J[f], 3 * m, n_v);
+    const Eigen::Map<MatX> HinvJt = grown_matrix(ws.HinvJt[f], n_v, 3 * m);
     sys.W.noalias() += J * HinvJt;
     sys.u.noalias() += J * Eigen::Map<const VecX>(figures[f].v, n_v);
   }
   const bool projected = solve_impulses(contacts, settings, sys);
   for (std::size_t f = 0; f < figures.size(); ++f) {
     const int n_v = figures[f].model->n_v;
-    const Eigen::Map<MatX> HinvJt = matrix_in(ws.HinvJt[f], n_v, 3 * m);
+    const Eigen::Map<MatX> HinvJt = grown_matrix(ws.HinvJt[f], n_v, 3 * m);
     Eigen::Map<VecX>(figures[f].v, n_v).noalias() += HinvJt * sys.p;
   }
   for (int c = 0; c < m; ++c) ws.impulses[c] = sys.p.template segment<3>(3 * c);
@@ -182,6 +175,12 @@ bool impact_in(std::span<const ImpactFigure> figures, std::span<const ImpactCont
 }
 
 }  // namespace
+
+Eigen::Map<MatX> grown_matrix(std::vector<Real>& storage, int rows, int cols) {
+  const std::size_t size = static_cast<std::size_t>(rows) * static_cast<std::size_t>(cols);
+  if (storage.size() < size) storage.resize(size);
+  return {storage.data(), rows, cols};
+}
 
 void reserve_impact_workspace(int figures, int segments, int n_v, int contacts,
                               ImpactWorkspace& ws) {
@@ -210,6 +209,7 @@ void reserve_impact_workspace(int figures, int segments, int n_v, int contacts,
     ws.HinvJt[f].reserve(static_cast<std::size_t>(3 * contacts * n_v));
   }
   ws.impulses.reserve(static_cast<std::size_t>(contacts));
+  ws.limit_rows.reserve(static_cast<std::size_t>(n_v));
   if (ws.in_place.empty()) ws.in_place.resize(1);
 }
 
@@ -232,16 +232,16 @@ ImpactResult resolve_impact(std::span<const ImpactFigure> figures,
   for (int f = 0; f < n_figures; ++f) {
     const FigureModel& model = *figures[f].model;
     size_figure_workspace(model, ws.figures[f]);
-    Eigen::Map<MatX> H = matrix_in(ws.H[f], model.n_v, model.n_v);
+    Eigen::Map<MatX> H = grown_matrix(ws.H[f], model.n_v, model.n_v);
     joint_space_inertia(model, figures[f].q, ws.figures[f], H);
     segment_world_transforms(model, ws.figures[f], ws.world[f]);
-    matrix_in(ws.J[f], 3 * m, model.n_v).setZero();
+    grown_matrix(ws.J[f], 3 * m, model.n_v).setZero();
   }
   // J: rows 3c..3c+2 give the velocity of contact c's point on a relative to b.
   for (int c = 0; c < m; ++c) {
     const ImpactContact& contact = contacts[c];
     const auto add = [&](int f, int segment, Real sign) {
-      Eigen::Map<MatX> J = matrix_in(ws.J[f], 3 * m, figures[f].model->n_v);
+      Eigen::Map<MatX> J = grown_matrix(ws.J[f], 3 * m, figures[f].model->n_v);
       add_point_jacobian(*figures[f].model, ws.figures[f], ws.world[f], segment, contact.point,
                          sign, J.middleRows(3 * c, 3));
     };
@@ -251,9 +251,9 @@ ImpactResult resolve_impact(std::span<const ImpactFigure> figures,
   // H^-1 J^T by H's Cholesky factor, in place in H's storage.
   for (int f = 0; f < n_figures; ++f) {
     const int n_v = figures[f].model->n_v;
-    Eigen::Map<MatX> H = matrix_in(ws.H[f], n_v, n_v);
-    Eigen::Map<MatX> HinvJt = matrix_in(ws.HinvJt[f], n_v, 3 * m);
-    HinvJt = matrix_in(ws.J[f], 3 * m, n_v).transpose();
+    Eigen::Map<MatX> H = grown_matrix(ws.H[f], n_v, n_v);
+    Eigen::Map<MatX> HinvJt = grown_matrix(ws.HinvJt[f], n_v, 3 * m);
+    HinvJt = grown_matrix(ws.J[f], 3 * m, n_v).transpose();
     Eigen::LLT<Eigen::Ref<MatX>> llt(H);
     llt.solveInPlace(HinvJt);
   }

@@ -79,6 +79,7 @@ struct ImpactWorkspace {
   // Jacobian J (3 m x n_v) and H^-1 J^T (n_v x 3 m), column-major.
   std::vector<std::vector<Real>> H, J, HinvJt;
   std::vector<Vec3> impulses;
+  std::vector<int> limit_rows;  // the joint limits in an impact (figure/joint_limits.h)
   std::vector<ImpactSystem<ImpactMatrix, ImpactVector>> in_place;  // one, on the heap (~0.3 MB)
   ImpactSystem<MatX, VecX> on_heap;
 };
@@ -87,6 +88,9 @@ struct ImpactWorkspace {
 // with up to `contacts` contacts, so that such impacts allocate nothing.
 void reserve_impact_workspace(int figures, int segments, int n_v, int contacts,
                               ImpactWorkspace& ws);
+
+// Grows storage to hold a rows x cols matrix and views it as one (column-major).
+Eigen::Map<MatX> grown_matrix(std::vector<Real>& storage, int rows, int cols);
 
 // Changes the figures' velocities by the impact at the contacts.
 ImpactResult resolve_impact(std::span<const ImpactFigure> figures,

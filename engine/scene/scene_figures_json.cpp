@@ -80,6 +80,22 @@ constexpr auto kJointFields = std::to_array<Field<JointDef>>({
          .default_note = "at rest",
          .description = "The spring's rest coordinates, as many as q0 has (spherical: a "
                         "quaternion w, x, y, z)."}),
+    joint_numbers<&JointDef::lower>(
+        {.key = "lower",
+         .unit = "rad or m",
+         .kinds = kHasAxis,
+         .default_note = "unlimited",
+         .description = "Joint limits: the least q per DOF (with upper, one number per DOF)."}),
+    joint_numbers<&JointDef::upper>({.key = "upper",
+                                     .unit = "rad or m",
+                                     .kinds = kHasAxis,
+                                     .default_note = "unlimited",
+                                     .description = "The greatest q per DOF, each above lower's."}),
+    value<&JointDef::limit_restitution>(
+        {.key = "limit_restitution",
+         .range = kUnitInterval,
+         .kinds = kHasAxis,
+         .description = "e of (15.2) when a DOF strikes its limit: q-dot+ = -e q-dot-."}),
     joint_numbers<&JointDef::q0>(
         {.key = "q0",
          .unit = "rad or m",

@@ -157,6 +157,7 @@ Model build_model(const Scene& scene) {
     // The controllers' first-order state follows the figure's q (figure/figure_build.h).
     figure.state_control_offset = model.n_q;
     model.n_q += figure.n_control;
+    size_joint_limits(figure.model, figure.q0, scene.solver.dt, figure.limits);
     model.figures.push_back(std::move(figure));
   }
   settle_initial_segment_overlaps(model);

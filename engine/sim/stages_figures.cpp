@@ -304,6 +304,14 @@ void figure_contact_forces(const RateContext& c) {
   if (c.model.segment_collisions) add_segment_contact_forces(c.model, fw);
 }
 
+bool figure_impacts_present(const Model& model) {
+  if (figure_contacts_present(model)) return true;
+  for (const CompiledFigure& f : model.figures) {
+    if (!f.limits.empty()) return true;
+  }
+  return false;
+}
+
 void figure_impacts(const SubstepContext& c) {
   // The obstacles where the step ends, as the bodies' collision stage places them.
   place_obstacles(c.model, c.inputs, c.state.time, c.ws.drive.obstacles);
@@ -312,6 +320,12 @@ void figure_impacts(const SubstepContext& c) {
     const FigureModel& figure = c.model.figures[f].model;
     const FigureDef& def = c.model.scene.figures[f];
     FigureWorkspace& w = fw.each[f];
+    // The joints arriving at their limits (figure/joint_limits.h), before the contacts see the
+    // velocities.
+    resolve_limit_impacts(figure, c.model.figures[f].limits,
+                          c.state.q.data() + figure.state_q_offset,
+                          c.state.v.data() + figure.state_v_offset, def.impact_speed, fw.impact);
+    if (c.ws.drive.obstacles.empty()) continue;
     fw.q.head(figure.n_q) = c.state.q.segment(figure.state_q_offset, figure.n_q);
     fw.v.head(figure.n_v) = c.state.v.segment(figure.state_v_offset, figure.n_v);
     pbm::figure_kinematics(figure, fw.q.data(), fw.v.data(), w);
@@ -352,6 +366,8 @@ void figure_dynamics(const RateContext& c) {
     const Real* v = v_of(figure, c.v);
     joint_damping(figure, v, fw.tau.data());
     add_joint_spring_forces(figure, q_of(figure, c.q), fw.tau.data());
+    add_joint_limit_forces(compiled.limits, q_of(figure, c.q), v,
+                           c.model.scene.figures[f].impact_speed, fw.tau.data());
     // The explicit controllers' forces (the controllers stage ran before).
     if (!compiled.controllers.empty()) fw.tau.head(figure.n_v) += fw.control[f].tau;
     // Gravity as the base's acceleration, at its value of the moment (tracks may drive it); the
@@ -404,7 +420,8 @@ void measure_figures(const Model& model, const State& state, Workspace& ws, Fram
       out.potential -= I.m * ws.drive.gravity.dot(centre);
     }
     // The joint springs' energy, then the contact springs' below.
-    out.elastic = joint_spring_energy(figure, q_of(figure, state.q));
+    out.elastic = joint_spring_energy(figure, q_of(figure, state.q)) +
+                  joint_limit_energy(model.figures[f].limits, q_of(figure, state.q));
     out.contacts = 0;
     measure_figure_controllers(model.figures[f], state, out);
     if (!figure_contacts_present(model)) continue;

@@ -15,7 +15,9 @@ void size_figures(const Model& model, Workspace& ws);
 // impact stage after the step.
 bool figure_contacts_present(const Model& model);
 void figure_contact_forces(const RateContext& c);  // contact_forces
-void figure_impacts(const SubstepContext& c);      // impacts: (15.1)-(15.8)
+// The impact stage runs where contacts can happen or a joint has limits.
+bool figure_impacts_present(const Model& model);
+void figure_impacts(const SubstepContext& c);  // impacts: (15.1)-(15.8), joint limits
 void figure_dynamics(const RateContext& c);    // dynamics: sec. 15.2, the articulated-body method
 void figure_kinematics(const RateContext& c);  // kinematics: q-dot from v
 void figure_kinematic_rates(const Model& model, const VecX& q, const VecX& v, VecX& q_dot);

@@ -66,7 +66,7 @@ constexpr Subsystem kTable[] = {
      .kinematic_rates = stages::figure_kinematic_rates,
      .substep = {{{S::step_start, stages::figure_step_start, stages::figure_controllers_present},
                   {S::renormalize, stages::figure_renormalize},
-                  {S::impacts, stages::figure_impacts, stages::figure_contacts_present}}},
+                  {S::impacts, stages::figure_impacts, stages::figure_impacts_present}}},
      .measure = stages::measure_figures,
      .describe_failure = stages::describe_figure_failure,
      .add_drawables = stages::add_figure_drawables},
