@@ -1,8 +1,9 @@
 #include "frame_output.h"
 
-#include "sim/level_of_detail.h"
-
+#include <algorithm>
 #include <nlohmann/json.hpp>
+
+#include "sim/level_of_detail.h"
 
 namespace pbm {
 namespace {
@@ -141,6 +142,19 @@ std::string frame_stats_json(const World& world, const FrameStats& s, long frame
       figures.push_back(std::move(figure));
     }
     j["figures"] = figures;
+  }
+  // Segments with bodies (sim/segment_body_collisions.h), the frame's last substep.
+  const bool segment_bodies =
+      std::any_of(world.subsystems.begin(), world.subsystems.end(),
+                  [](const Subsystem* k) { return k->id == SubsystemId::segment_bodies; });
+  if (segment_bodies) {
+    const SegmentBodyStats& sb = s.segment_bodies;
+    j["segment_bodies"] = {{"contacts", sb.contacts},
+                           {"penetrating", sb.penetrating},
+                           {"max_penetration", sb.max_penetration},
+                           {"normal_impulse", sb.normal_impulse},
+                           {"pressing", sb.pressing},
+                           {"push_impulse", sb.push_impulse}};
   }
   return j.dump();
 }

@@ -85,6 +85,7 @@ inline json full_scene() {
     "figures": [
       {"name": "arm", "restitution": 0.3, "impact_speed": 0.2, "contact_stiffness": 5e4,
        "contact_damping": 50, "self_collisions": false, "figure_collisions": false,
+       "body_collisions": false,
        "friction": 0.7, "non_colliding": [{"a": "upper", "b": "segment5"}], "segments": [
         {"name": "base", "joint": {"kind": "free", "position": [0, 0, 1],
                                    "q0": [0, 0, 1, 2, 0, 0, 0], "v0": [0, 0, 1, 0.5, 0, 0]},
@@ -257,6 +258,7 @@ inline void expect_same_scene(const Scene& a, const Scene& b) {
     EXPECT_EQ(a.figures[f].contact_damping, b.figures[f].contact_damping);
     EXPECT_EQ(a.figures[f].self_collisions, b.figures[f].self_collisions);
     EXPECT_EQ(a.figures[f].figure_collisions, b.figures[f].figure_collisions);
+    EXPECT_EQ(a.figures[f].body_collisions, b.figures[f].body_collisions);
     EXPECT_EQ(a.figures[f].friction, b.figures[f].friction);
     ASSERT_EQ(a.figures[f].non_colliding.size(), b.figures[f].non_colliding.size());
     for (std::size_t k = 0; k < a.figures[f].non_colliding.size(); ++k) {

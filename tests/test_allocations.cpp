@@ -130,5 +130,11 @@ TEST(Allocations, WaistUnderMracStepsWithoutAllocating) {
   EXPECT_EQ(allocations_in_frames("waist-step", 2, 20), 0);
 }
 
+// A figure's arm striking a deformable body (sim/segment_body_collisions.h): the strike is in
+// frames 15-20, the ball's fall onto the floor after it.
+TEST(Allocations, ASwingIntoAJelloBallStepsWithoutAllocating) {
+  EXPECT_EQ(allocations_in_frames("figure-and-jello", 2, 40), 0);
+}
+
 }  // namespace
 }  // namespace pbm

@@ -16,17 +16,15 @@ namespace pbm {
 namespace {
 
 using Clock = WallClock;
-using Scratch = BodyCollisionWorkspace::BodyScratch;
+using Scratch = BodyContactScratch;
 
 bool sized_for(std::span<const BodyModel> bodies, const BodyCollisionWorkspace& cws) {
   if (cws.bodies.size() != bodies.size() || cws.broadphase.boxes.size() != bodies.size()) {
     return false;
   }
   for (std::size_t b = 0; b < bodies.size(); ++b) {
-    const BodyModel& body = bodies[b];
-    if (static_cast<int>(cws.bodies[b].x0.size()) != body.n_nodes() ||
-        cws.bodies[b].nu.size() != body.n_generalized() ||
-        cws.broadphase.boxes[b].size() != body.tessellation.triangles.size()) {
+    if (!scratch_sized_for(bodies[b], cws.bodies[b]) ||
+        cws.broadphase.boxes[b].size() != bodies[b].tessellation.triangles.size()) {
       return false;
     }
   }
@@ -38,32 +36,8 @@ void size_workspace(std::span<const BodyModel> bodies, BodyCollisionWorkspace& c
   std::vector<int> counts;
   cws.bodies.assign(bodies.size(), Scratch{});
   for (std::size_t b = 0; b < bodies.size(); ++b) {
-    const BodyModel& body = bodies[b];
-    Scratch& s = cws.bodies[b];
-    s.stiffness = node_contact_stiffness(body);
-    const auto n = static_cast<std::size_t>(body.n_nodes());
-    s.x0.assign(n, Vec3::Zero());
-    s.x.assign(n, Vec3::Zero());
-    s.x_dot0.assign(n, Vec3::Zero());
-    s.x_dot.assign(n, Vec3::Zero());
-    s.normal.assign(n, Vec3::Zero());
-    s.nu.setZero(body.n_generalized());
-    s.g.setZero(body.n_generalized());
-    s.delta.setZero(body.n_generalized());
-    const auto& tris = body.tessellation.triangles;
-    s.triangle_start.assign(n + 1, 0);
-    for (const std::array<int, 3>& t : tris) {
-      for (int v : t) ++s.triangle_start[static_cast<std::size_t>(v) + 1];
-    }
-    for (std::size_t k = 1; k <= n; ++k) s.triangle_start[k] += s.triangle_start[k - 1];
-    s.node_triangles.assign(3 * tris.size(), 0);
-    std::vector<int> fill(s.triangle_start.begin(), s.triangle_start.end() - 1);
-    for (std::size_t t = 0; t < tris.size(); ++t) {
-      for (int v : tris[t]) s.node_triangles[fill[v]++] = static_cast<int>(t);
-    }
-    s.seen.assign(tris.size(), 0);
-    s.stamp = 0;
-    counts.push_back(static_cast<int>(body.tessellation.triangles.size()));
+    size_body_scratch(bodies[b], cws.bodies[b]);
+    counts.push_back(static_cast<int>(bodies[b].tessellation.triangles.size()));
   }
   resize_broadphase(counts, cws.broadphase);
   // Room for a contact as large as the bodies' surfaces, so that one forming or spreading inside
@@ -90,128 +64,8 @@ void compute_vertex_normals(const BodyModel& body, Scratch& s) {
   }
 }
 
-// World velocity of node k of a rigid or global body from the scratch nu: R P_k nu (3.4).
-Vec3 generalized_node_velocity(const BodyModel& body, const BodyWorkspace& bw, const Scratch& s,
-                               int k) {
-  Vec3 r = linear_part(s.nu) + angular_part(s.nu).cross(bw.p[k]);
-  if (body.n_s > 0) r += J_times(bw, k, s.nu.data() + BodyLayout::kShapeInV);
-  return bw.R * r;
-}
-
-// One side of a contact: a node (count 1, weight 1) or a triangle's point sum w_k x_k.
-struct Side {
-  int body = 0;
-  const int* nodes = nullptr;
-  const Real* weights = nullptr;
-  int count = 1;
-};
-
-struct Bodies {
-  const BodySet& set;
-  BodyCollisionWorkspace& cws;
-  // BodyCollisionModel::constrained: a rigid or global part held by a constraint (ch. 7) is not
-  // translated by the projection; the other side is moved the whole way.
-  const std::vector<char>& constrained;
-  const BodyModel& body(const Side& side) const { return set.models[side.body]; }
-  bool pinned(const Side& side) const {
-    return constrained[side.body] != 0 && !set.models[side.body].has_local;
-  }
-  BodyWorkspace& bw(const Side& side) const { return set.ws[side.body]; }
-  Scratch& scratch(const Side& side) const { return cws.bodies[side.body]; }
-};
-
-Vec3 side_velocity(const Bodies& all, const Side& side) {
-  const BodyModel& body = all.body(side);
-  const Scratch& s = all.scratch(side);
-  Vec3 v = Vec3::Zero();
-  for (int k = 0; k < side.count; ++k) {
-    const int i = side.nodes[k];
-    v += side.weights[k] *
-         (body.has_local ? s.x_dot[i] : generalized_node_velocity(body, all.bw(side), s, i));
-  }
-  return v;
-}
-
-Vec3 side_position(const Bodies& all, const Side& side) {
-  const BodyModel& body = all.body(side);
-  const Scratch& s = all.scratch(side);
-  Vec3 x = Vec3::Zero();
-  for (int k = 0; k < side.count; ++k) {
-    const int i = side.nodes[k];
-    x += side.weights[k] * (body.has_local ? s.x[i] : Vec3(s.x0[i] + s.shift));
-  }
-  return x;
-}
-
-// L^T J = sum w_k P_k^T R^T J into s.g (rigid and global sides).
-void generalized_impulse(const BodyModel& body, const BodyWorkspace& bw, const Side& side,
-                         const Vec3& J, Scratch& s) {
-  const Vec3 y = bw.R.transpose() * J;
-  s.g.setZero();
-  for (int k = 0; k < side.count; ++k) {
-    const int i = side.nodes[k];
-    const Real w = side.weights[k];
-    linear_part(s.g) += w * y;
-    angular_part(s.g) += w * bw.p[i].cross(y);
-    if (body.n_s > 0) add_Jt_y(bw, i, y, w, s.g.data() + BodyLayout::kShapeInV);
-  }
-}
-
-// Inverse of the mass the side moves with along the unit direction d.
-Real side_inverse_mass(const Bodies& all, const Side& side, const Vec3& d) {
-  const BodyModel& body = all.body(side);
-  if (body.has_local) {
-    Real sum = 0;
-    for (int k = 0; k < side.count; ++k) {
-      sum += side.weights[k] * side.weights[k] / body.node_mass[side.nodes[k]];
-    }
-    return sum;
-  }
-  Scratch& s = all.scratch(side);
-  BodyWorkspace& bw = all.bw(side);
-  generalized_impulse(body, bw, side, d, s);
-  solve_generalized_mass(bw, s.g, s.delta);
-  return s.g.dot(s.delta);
-}
-
-void apply_impulse(const Bodies& all, const Side& side, const Vec3& J) {
-  const BodyModel& body = all.body(side);
-  Scratch& s = all.scratch(side);
-  s.touched = true;
-  if (body.has_local) {
-    for (int k = 0; k < side.count; ++k) {
-      const int i = side.nodes[k];
-      s.x_dot[i] += (side.weights[k] / body.node_mass[i]) * J;
-    }
-    return;
-  }
-  BodyWorkspace& bw = all.bw(side);
-  generalized_impulse(body, bw, side, J, s);
-  solve_generalized_mass(bw, s.g, s.delta);
-  s.nu += s.delta;
-}
-
-// Moves the side by lambda times its positional inverse mass along n (local: the nodes, each
-// by its weight over its mass; rigid and global: c, by 1 / M).
-void apply_displacement(const Bodies& all, const Side& side, Real lambda, const Vec3& n) {
-  const BodyModel& body = all.body(side);
-  Scratch& s = all.scratch(side);
-  s.touched = true;
-  if (body.has_local) {
-    for (int k = 0; k < side.count; ++k) {
-      const int i = side.nodes[k];
-      s.x[i] += (lambda * side.weights[k] / body.node_mass[i]) * n;
-    }
-  } else if (!all.pinned(side)) {
-    s.shift += (lambda / body.mass) * n;
-  }
-}
-
-Real position_inverse_mass(const Bodies& all, const Side& side) {
-  const BodyModel& body = all.body(side);
-  if (!body.has_local) return all.pinned(side) ? 0.0 : 1.0 / body.mass;
-  return side_inverse_mass(all, side, Vec3::UnitX());
-}
+using Side = ContactSide;
+using Bodies = ContactBodies;
 
 constexpr Real kUnitWeight = 1.0;
 
@@ -361,9 +215,8 @@ void pair_nodes(std::span<const BodyModel> bodies, BodyCollisionWorkspace& cws,
 
 // Step 4: equal and opposite inelastic impulses with Coulomb's cone (5.13), projected
 // Gauss-Seidel in alternating sweeps.
-void solve_impulses(const Bodies& all, const BodyCollisionOptions& options, Real dt,
-                    BodyCollisionStats& stats) {
-  std::vector<BodyContact>& contacts = all.cws.contacts;
+void solve_impulses(const Bodies& all, std::vector<BodyContact>& contacts,
+                    const BodyCollisionOptions& options, Real dt, BodyCollisionStats& stats) {
   const int m = static_cast<int>(contacts.size());
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     Real change = 0, largest = 0;
@@ -383,8 +236,8 @@ void solve_impulses(const Bodies& all, const BodyCollisionOptions& options, Real
       if (dj.isZero(0)) continue;
       c.impulse = j;
       const Vec3 J = c.basis * dj;
-      apply_impulse(all, a, J);
-      apply_impulse(all, b, -J);
+      apply_side_impulse(all, a, J);
+      apply_side_impulse(all, b, -J);
       change = std::max(change, dj.cwiseAbs().maxCoeff());
       largest = std::max(largest, j.cwiseAbs().maxCoeff());
     }
@@ -395,9 +248,8 @@ void solve_impulses(const Bodies& all, const BodyCollisionOptions& options, Real
 
 // Step 3: penetrating pairs to the mass-weighted mid-plane, Gauss-Seidel passes for pairs that
 // share nodes.
-void project_to_mid_plane(const Bodies& all, const BodyCollisionOptions& options,
-                          BodyCollisionStats& stats) {
-  std::vector<BodyContact>& contacts = all.cws.contacts;
+void project_to_mid_plane(const Bodies& all, std::vector<BodyContact>& contacts,
+                          const BodyCollisionOptions& options, BodyCollisionStats& stats) {
   for (int pass = 0; pass < options.iterations; ++pass) {
     Real worst = 0;
     for (BodyContact& c : contacts) {
@@ -407,8 +259,8 @@ void project_to_mid_plane(const Bodies& all, const BodyCollisionOptions& options
       if (gap >= 0) continue;
       worst = std::min(worst, gap);
       const Real lambda = (kProjectionMargin - gap) / c.position_inverse_mass;
-      apply_displacement(all, a, lambda, n);
-      apply_displacement(all, b, -lambda, n);
+      apply_side_displacement(all, a, lambda, n);
+      apply_side_displacement(all, b, -lambda, n);
     }
     if (worst >= 0) break;
   }
@@ -419,40 +271,9 @@ void project_to_mid_plane(const Bodies& all, const BodyCollisionOptions& options
   }
 }
 
-// Back to q and v: local nodes through q_d and d-dot, then the mean-axis split; rigid and global
-// bodies through c and nu.
-void write_back_body(const BodySet& set, int b, BodyCollisionWorkspace& cws) {
-  Scratch& s = cws.bodies[b];
-  const BodyModel& body = set.models[b];
-  BodyWorkspace& bw = set.ws[b];
-  auto q = body_q(body, set.q);
-  auto v = body_v(body, set.v);
-  const Mat3 Rt = bw.R.transpose();
-  if (body.has_local) {
-    const int d_q = body.layout.displacement_in_q(), d_v = body.layout.displacement_in_v();
-    const Vec3 omega = omega_of(v);
-    for (int i = 0; i < body.n_nodes(); ++i) {
-      // x-dot = R (V + omega x p + p-dot) (3.4): a node moved by dp would gain omega x dp, so
-      // its d-dot loses it and the velocity is the one the impulses left.
-      const Vec3 dp = Rt * (s.x[i] - s.x0[i]);
-      q.segment<3>(d_q + 3 * i) += dp;
-      v.segment<3>(d_v + 3 * i) += Rt * (s.x_dot[i] - s.x_dot0[i]) - omega.cross(dp);
-    }
-    recenter_displacements(body, q, v);
-    compute_body_kinematics(body, q, v, bw, false);
-    factor_generalized_mass(body, q, bw);
-    resplit_velocities(body, q, v, bw);
-  } else {
-    position_of(q) += s.shift;
-    velocity_of(v) = bw.R * linear_part(s.nu);
-    after_translation(v, body.n_generalized()) = after_translation(s.nu, body.n_generalized());
-  }
-  compute_body_kinematics(body, q, v, bw, false);
-}
-
 void write_back(const BodySet& set, BodyCollisionWorkspace& cws) {
   for (int b = 0; b < set.size(); ++b) {
-    if (cws.bodies[b].touched) write_back_body(set, b, cws);
+    if (cws.bodies[b].touched) write_back_body(set, b, cws.bodies[b]);
   }
 }
 
@@ -465,22 +286,8 @@ void resolve_between_bodies(const BodyCollisionModel& model, const BodySet& set,
   cws.broadphase.reinserted = 0;
   for (int b = 0; b < n_bodies; ++b) {
     const BodyModel& body = set.models[b];
-    BodyWorkspace& bw = set.ws[b];
     Scratch& s = cws.bodies[b];
-    const auto q = body_q(body, set.q);
-    const auto v = body_v(body, set.v);
-    compute_body_kinematics(body, q, v, bw, false);
-    s.x0 = bw.x;
-    s.x = bw.x;
-    s.x_dot0 = bw.x_dot;
-    s.x_dot = bw.x_dot;
-    s.shift.setZero();
-    s.touched = false;
-    s.mass_factored = false;
-    if (!body.has_local) {
-      linear_part(s.nu) = bw.R.transpose() * velocity_of(v);
-      after_translation(s.nu, body.n_generalized()) = after_translation(v, body.n_generalized());
-    }
+    load_body_scratch(set, b, s);
     compute_vertex_normals(body, s);
     update_surface_tree(b, s.x, body.tessellation.triangles, options.margin, cws.broadphase);
   }
@@ -494,23 +301,20 @@ void resolve_between_bodies(const BodyCollisionModel& model, const BodySet& set,
   if (cws.contacts.empty()) return;
 
   t0 = Clock::now();
-  const Bodies all{set, cws, model.constrained};
+  const Bodies all{set, cws.bodies, model.constrained};
   for (BodyContact& c : cws.contacts) {
-    for (const int b : {c.body_a, c.body_b}) {
-      Scratch& s = cws.bodies[b];
-      if (set.models[b].has_local || s.mass_factored) continue;
-      factor_generalized_mass(set.models[b], body_q(set.models[b], set.q), set.ws[b]);
-      s.mass_factored = true;
-    }
     const Side a = side_a(c), b = side_b(c);
+    ensure_side_mass(all, a);
+    ensure_side_mass(all, b);
     for (int d = 0; d < 3; ++d) {
       c.inverse_mass[d] =
           side_inverse_mass(all, a, c.basis.col(d)) + side_inverse_mass(all, b, c.basis.col(d));
     }
-    c.position_inverse_mass = position_inverse_mass(all, a) + position_inverse_mass(all, b);
+    c.position_inverse_mass =
+        side_position_inverse_mass(all, a) + side_position_inverse_mass(all, b);
   }
-  solve_impulses(all, options, dt, stats);
-  project_to_mid_plane(all, options, stats);
+  solve_impulses(all, cws.contacts, options, dt, stats);
+  project_to_mid_plane(all, cws.contacts, options, stats);
   write_back(set, cws);
   const BodyPushStats push = apply_body_push(set, cws, options.elasticity, dt);
   stats.pressing = push.pressing;
@@ -528,14 +332,8 @@ void resolve_within_bodies(const BodyCollisionOptions& options, const BodySet& s
   for (int b = 0; b < set.size(); ++b) {
     const BodyModel& body = set.models[b];
     if (!body.has_local) continue;
-    BodyWorkspace& bw = set.ws[b];
     Scratch& s = cws.bodies[b];
-    compute_body_kinematics(body, body_q(body, set.q), body_v(body, set.v), bw, false);
-    s.x0 = bw.x;
-    s.x = bw.x;
-    s.x_dot0 = bw.x_dot;
-    s.x_dot = bw.x_dot;
-    s.touched = false;
+    load_body_scratch(set, b, s);
     std::vector<Vec3>& x_start = sws.x_start[b];
     if (!recorded) {
       // First order in dt, exact only for straight node paths: a fallback for callers that step
@@ -545,7 +343,7 @@ void resolve_within_bodies(const BodyCollisionOptions& options, const BodySet& s
     }
     if (resolve_self_collisions(body, b, x_start, s.x, s.x_dot, dt, options, sws, stats.self)) {
       s.touched = true;
-      write_back_body(set, b, cws);
+      write_back_body(set, b, s);
     }
   }
   stats.seconds_self = seconds_since(t0);

@@ -43,6 +43,7 @@
 #include <vector>
 
 #include "collide/body_collision_model.h"
+#include "collide/body_contact_side.h"
 #include "collide/self_collision.h"
 #include "collide/surface_broadphase.h"
 #include "core/types.h"
@@ -84,24 +85,7 @@ struct BodyContact {
 // Scratch, rebuilt at will (results never depend on it). Sized on first use for the model.
 struct BodyCollisionWorkspace {
   SurfaceBroadphase broadphase;
-  struct BodyScratch {
-    std::vector<Vec3> x0, x;             // node positions at entry / being projected, world [m]
-    std::vector<Vec3> x_dot0, x_dot;     // node velocities (local bodies), world [m/s]
-    std::vector<Vec3> normal;            // unit area-weighted vertex normals, world
-    std::vector<std::vector<int>> ring;  // per node: itself and its neighbours, sorted
-    std::vector<Real> stiffness;         // local bodies: per node, for the push (body_push.h)
-    VecX nu, g, delta;          // rigid/global: (R^T c-dot, omega, q_s-dot) and scratch (k)
-    Vec3 shift = Vec3::Zero();  // rigid/global: translation of c by the projection [m]
-    bool touched = false;
-    bool mass_factored = false;
-    // The triangles around each node (node k's run is node_triangles[triangle_start[k]] ..
-    // node_triangles[triangle_start[k + 1]]), and, per triangle, the node query that last took
-    // it as a candidate (a stamp), so a triangle near several of a node's faces is tested once.
-    std::vector<int> triangle_start, node_triangles;
-    std::vector<std::uint32_t> seen;
-    std::uint32_t stamp = 0;
-  };
-  std::vector<BodyScratch> bodies;
+  std::vector<BodyContactScratch> bodies;  // one per body (collide/body_contact_side.h)
   // Per ordered pair of bodies whose boxes overlap: for each triangle of `body`, the triangles of
   // `other` whose fattened boxes overlap it, bucketed by a counting sort (triangle t's run is
   // partners[start[t]] .. partners[start[t + 1]]). The first n_sides are this step's.

@@ -17,11 +17,12 @@ constexpr Real kOverlapRecovery = 5.0;
 constexpr Real kInfinite = std::numeric_limits<Real>::infinity();
 constexpr Real kUnitPushWeight = 1.0;
 
-// The global surface point of node k (c + R s_k for a local body, the node itself otherwise) and
-// its velocity c-dot + R (omega x s_k + J_k q_s-dot).
-struct GlobalPoint {
-  Vec3 x = Vec3::Zero(), x_dot = Vec3::Zero();
+struct PushPair {
+  int contact = 0;
+  Real phi = 0, stiffness = 0, mobility = 0, approach = 0;
 };
+
+}  // namespace
 
 GlobalPoint global_point(const BodyModel& body, const BodyWorkspace& bw,
                          const Eigen::Ref<const VecX>& q, const Eigen::Ref<const VecX>& v, int k) {
@@ -31,8 +32,6 @@ GlobalPoint global_point(const BodyModel& body, const BodyWorkspace& bw,
   return {position_of(q) + bw.R * bw.s[k], velocity_of(v) + bw.R * r};
 }
 
-// g = sum w_k P_k^T R^T y at the global points (s_k, not s_k + d_k: the push acts on the global
-// surface), k entries.
 void push_direction(const BodyModel& body, const BodyWorkspace& bw, const int* nodes,
                     const Real* weights, int count, const Vec3& y_world, VecX& g) {
   const Vec3 y = bw.R.transpose() * y_world;
@@ -46,12 +45,17 @@ void push_direction(const BodyModel& body, const BodyWorkspace& bw, const int* n
   }
 }
 
-struct PushPair {
-  int contact = 0;
-  Real phi = 0, stiffness = 0, mobility = 0, approach = 0;
-};
-
-}  // namespace
+Real push_impulse(Real stiffness, Real mass, Real phi, Real approach, Real dt) {
+  const Real rate = 1.0 / dt;
+  const Real k = std::min(stiffness, mass * rate * rate);
+  // At most what stops the pair's approach in this step and then parts the global points at
+  // kOverlapRecovery times their overlap (see the header).
+  const Real target = approach + kOverlapRecovery * (-phi);
+  if (!(target > 0)) return 0;
+  const Real c_d = std::min(2 * kPushDampingRatio * std::sqrt(k * mass), mass * rate);
+  const Real f = k * (-phi) + c_d * approach;
+  return std::min(dt * std::max(0.0, f), mass * target);
+}
 
 std::vector<Real> node_contact_stiffness(const BodyModel& body) {
   std::vector<Real> k;
@@ -135,22 +139,13 @@ BodyPushStats apply_body_push(const BodySet& set, BodyCollisionWorkspace& cws, R
   }
   if (pairs.empty()) return stats;
   // Jacobi: every force from the state the contacts were resolved to, then all applied.
-  const Real rate = 1.0 / dt;
   std::vector<Real> impulse(pairs.size(), 0.0);
   for (std::size_t p = 0; p < pairs.size(); ++p) {
     const PushPair& pair = pairs[p];
     const BodyContact& c = cws.contacts[pair.contact];
     const int lo = std::min(c.body_a, c.body_b), hi = std::max(c.body_a, c.body_b);
     const Real share = pair.stiffness / pair_stiffness[lo * n_bodies + hi];
-    const Real mass = share / pair.mobility;
-    const Real stiffness = std::min(pair.stiffness, mass * rate * rate);
-    // At most what stops the pair's approach in this step and then parts the global points at
-    // kOverlapRecovery times their overlap (see the header).
-    const Real target = pair.approach + kOverlapRecovery * (-pair.phi);
-    if (!(target > 0)) continue;
-    const Real c_d = std::min(2 * kPushDampingRatio * std::sqrt(stiffness * mass), mass * rate);
-    const Real f = stiffness * (-pair.phi) + c_d * pair.approach;
-    impulse[p] = std::min(dt * std::max(0.0, f), mass * target);
+    impulse[p] = push_impulse(pair.stiffness, share / pair.mobility, pair.phi, pair.approach, dt);
   }
   std::vector<char> changed(static_cast<std::size_t>(n_bodies), 0);
   auto apply = [&](int b, const int* nodes, const Real* weights, int count, const Vec3& J) {

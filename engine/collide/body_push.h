@@ -45,6 +45,26 @@ struct BodyPushStats {
 // of the sample's stiffness times its weight at the node [N/m]. Empty for other bodies.
 std::vector<Real> node_contact_stiffness(const BodyModel& body);
 
+// The global surface point of node k (c + R s_k for a local body, the node itself otherwise) and
+// its velocity c-dot + R (omega x s_k + J_k q_s-dot), world. Needs the body's kinematics.
+struct GlobalPoint {
+  Vec3 x = Vec3::Zero(), x_dot = Vec3::Zero();
+};
+GlobalPoint global_point(const BodyModel& body, const BodyWorkspace& bw,
+                         const Eigen::Ref<const VecX>& q, const Eigen::Ref<const VecX>& v, int k);
+
+// g = sum w_k P_k^T R^T y at the global points (s_k, not s_k + d_k: the push acts on the global
+// surface), k entries.
+void push_direction(const BodyModel& body, const BodyWorkspace& bw, const int* nodes,
+                    const Real* weights, int count, const Vec3& y_world, VecX& g);
+
+// The law of one pair's push in a step of length dt: a spring of `stiffness` [N/m] on the
+// overlap -phi [m] (phi < 0), with the pair's mass [kg] (its share of the contact), clamped to
+// omega dt = 1 and a critically damped dashpot (c dt <= m) on the approach speed [m/s] (> 0
+// closing); capped at the impulse that stops the approach and then parts the surfaces at
+// 5/s times their overlap (see above). Returns the impulse [N s], >= 0.
+Real push_impulse(Real stiffness, Real mass, Real phi, Real approach, Real dt);
+
 // Applies the push of `elasticity` (a of 5.11) over cws.contacts to set.v. Needs set.ws with the
 // kinematics of the state (as resolve_body_collisions leaves them) and cws.bodies[b].stiffness.
 BodyPushStats apply_body_push(const BodySet& set, BodyCollisionWorkspace& cws, Real elasticity,

@@ -10,6 +10,7 @@
 #include <BulletCollision/NarrowPhaseCollision/btPointCollector.h>
 #include <BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h>
 #include <algorithm>
+#include <cmath>
 #include <variant>
 
 namespace pbm {
@@ -130,6 +131,63 @@ Box3 convex_bounds(const ConvexSolid& s) {
   box.add(s.center - reach);
   box.add(s.center + reach);
   return box;
+}
+
+Real convex_signed_distance(const ConvexSolid& solid, const Vec3& x, Vec3& normal) {
+  const Vec3 p = solid.rotation.transpose() * (x - solid.center);  // in the shape's frame
+  const Real r = solid.size.x();
+  Vec3 n = Vec3::UnitZ();
+  Real d = 0;
+  // Distance from a point to a convex set's core (a point or a segment) minus a radius.
+  const auto around = [&](const Vec3& core) {
+    const Vec3 out = p - core;
+    const Real length = out.norm();
+    if (length > 0) n = out / length;
+    d = length - r;
+  };
+  switch (solid.kind) {
+    case ConvexKind::sphere:
+      around(Vec3::Zero());
+      break;
+    case ConvexKind::capsule:
+      around(Vec3(0, 0, std::clamp(p.z(), -solid.size.z(), solid.size.z())));
+      break;
+    case ConvexKind::box: {
+      const Vec3 q = p.cwiseAbs() - solid.size;
+      const Vec3 sign = p.unaryExpr([](Real c) { return c < 0 ? Real(-1) : Real(1); });
+      if ((q.array() > 0).any()) {
+        const Vec3 out = q.cwiseMax(0.0);
+        d = out.norm();
+        n = sign.cwiseProduct(out) / d;
+      } else {
+        int axis = 0;
+        d = q.maxCoeff(&axis);
+        n = Vec3::Zero();
+        n[axis] = sign[axis];
+      }
+      break;
+    }
+    case ConvexKind::cylinder: {
+      const Real rho = std::hypot(p.x(), p.y());
+      const Vec3 radial = rho > 0 ? Vec3(p.x() / rho, p.y() / rho, 0) : Vec3::UnitX();
+      const Vec3 axial(0, 0, p.z() < 0 ? -1 : 1);
+      const Real dr = rho - r, dz = std::abs(p.z()) - solid.size.z();
+      if (dr > 0 || dz > 0) {
+        const Real a = std::max(dr, Real(0)), b = std::max(dz, Real(0));
+        d = std::hypot(a, b);
+        n = (a * radial + b * axial) / d;
+      } else if (dr > dz) {
+        d = dr;
+        n = radial;
+      } else {
+        d = dz;
+        n = axial;
+      }
+      break;
+    }
+  }
+  normal = solid.rotation * n;
+  return d;
 }
 
 }  // namespace pbm

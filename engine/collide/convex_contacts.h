@@ -43,4 +43,9 @@ int convex_contacts(const ConvexSolid& a, const ConvexSolid& b, ConvexContacts& 
 // The solid's axis-aligned bounding box, exact for a box, a sphere and a capsule.
 Box3 convex_bounds(const ConvexSolid& solid);
 
+// Signed distance of the world point x from the solid's surface [m] (< 0 inside), in closed form
+// (double precision), and the solid's outward unit normal at the closest surface point (inside:
+// toward the nearest face). Exact for every kind.
+Real convex_signed_distance(const ConvexSolid& solid, const Vec3& x, Vec3& normal);
+
 }  // namespace pbm

@@ -93,6 +93,9 @@ struct FigureDef {
   // the geometric mean of their friction.
   bool self_collisions = true;
   bool figure_collisions = true;
+  // Collisions of its segments with the deformable bodies (sec. 15.3 with 5.2.2): a segment dents
+  // a body and is pushed back by it (sim/segment_body_collisions.h).
+  bool body_collisions = true;
   std::vector<SegmentPairDef> non_colliding;
   Real friction = 0.5;  // Coulomb's mu between segments, >= 0
   // Joint controllers (sec. 15.4), at most one per DOF.

@@ -20,23 +20,6 @@ constexpr int kMaxSweeps = 20000;
 // largest impulse it is projected.
 constexpr Real kFeasibilityTolerance = 1e-10;
 
-// Adds sign * (velocity of the world point attached to `segment` per joint velocity) to the three
-// rows: for each joint on the path to the root, its subspace in world coordinates at the point,
-// v_O + omega x point.
-void add_point_jacobian(const FigureModel& figure, const FigureWorkspace& ws,
-                        const std::vector<SpatialTransform>& world, int segment, const Vec3& point,
-                        Real sign, Eigen::Ref<MatX> rows) {
-  for (int j = segment; j >= 0; j = figure.segments[j].parent) {
-    const SpatialTransform to_world = inverse(world[j]);
-    const MotionSubspace& S = ws.S[j];
-    for (int k = 0; k < S.cols(); ++k) {
-      const Vec6 column = S.col(k);
-      const MotionVector s = transform_motion(to_world, motion_from_vec6(column));
-      rows.col(figure.segments[j].v_offset + k) += sign * (s.linear + s.angular.cross(point));
-    }
-  }
-}
-
 // The relative velocity the contact law asks of a contact after the impact: along n, -e times
 // u_n before (15.2); across n, zero (15.4; a frictionless contact reads only the normal part).
 Vec3 contact_target(const Vec3& n, Real u_n_before, Real e) {
@@ -51,6 +34,20 @@ void segment_world_transforms(const FigureModel& figure, const FigureWorkspace& 
   for (int i = 0; i < figure.size(); ++i) {
     const int p = figure.segments[i].parent;
     world[i] = p >= 0 ? ws.X_up[i] * world[p] : ws.X_up[i];
+  }
+}
+
+void add_point_jacobian(const FigureModel& figure, const FigureWorkspace& ws,
+                        const std::vector<SpatialTransform>& world, int segment, const Vec3& point,
+                        Real sign, Eigen::Ref<MatX> rows) {
+  for (int j = segment; j >= 0; j = figure.segments[j].parent) {
+    const SpatialTransform to_world = inverse(world[j]);
+    const MotionSubspace& S = ws.S[j];
+    for (int k = 0; k < S.cols(); ++k) {
+      const Vec6 column = S.col(k);
+      const MotionVector s = transform_motion(to_world, motion_from_vec6(column));
+      rows.col(figure.segments[j].v_offset + k) += sign * (s.linear + s.angular.cross(point));
+    }
   }
 }
 

@@ -97,6 +97,13 @@ ImpactResult resolve_impact(std::span<const ImpactFigure> figures,
                             std::span<const ImpactContact> contacts, const ImpactSettings& settings,
                             ImpactWorkspace& ws);
 
+// Adds sign * (velocity of the world point attached to `segment` per joint velocity) to the three
+// rows (3 x n_v): for each joint on the path to the root, its subspace in world coordinates at the
+// point, v_O + omega x point. Needs figure_kinematics (ws.S) and the world transforms.
+void add_point_jacobian(const FigureModel& figure, const FigureWorkspace& ws,
+                        const std::vector<SpatialTransform>& world, int segment, const Vec3& point,
+                        Real sign, Eigen::Ref<MatX> rows);
+
 // World transform (inertial -> segment) of every segment from figure_kinematics' X_up.
 void segment_world_transforms(const FigureModel& figure, const FigureWorkspace& ws,
                               std::vector<SpatialTransform>& world);

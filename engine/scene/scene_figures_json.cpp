@@ -325,6 +325,10 @@ constexpr auto kFigureFields = std::to_array<Field<FigureDef>>({
     value<&FigureDef::figure_collisions>(
         {.key = "figure_collisions",
          .description = "Its segments collide with other figures' (unless theirs do not)."}),
+    value<&FigureDef::body_collisions>(
+        {.key = "body_collisions",
+         .description = "Its segments collide with the deformable bodies: they dent them and are "
+                        "pushed back (both ways)."}),
     list<&FigureDef::non_colliding, kSegmentPairSection>(
         {.key = "non_colliding",
          .limit = kMaxSegmentPairs,

@@ -26,15 +26,14 @@ ConvexKind convex_kind(SegmentShapeKind kind) {
   return ConvexKind::box;
 }
 
-// The segment's shape placed by its world transform X (world -> segment): x = r + E^T p.
+}  // namespace
+
 ConvexSolid segment_solid(const SegmentShapeDef& shape, const SpatialTransform& X) {
   return {.kind = convex_kind(shape.kind),
           .size = shape.size,
           .rotation = X.E.transpose() * rotation_from_quaternion(shape.orientation),
           .center = X.r + X.E.transpose() * shape.center};
 }
-
-}  // namespace
 
 PairContactSettings pair_contact_settings(const FigureDef& a, const FigureDef& b) {
   return {.restitution = std::min(a.restitution, b.restitution),

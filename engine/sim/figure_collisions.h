@@ -41,6 +41,9 @@ struct SegmentCollisionScratch {
   std::vector<std::array<int, 2>> pairs;  // candidate pairs of solids whose boxes overlap
 };
 
+// The segment's shape placed by its world transform X (world -> segment): x = r + E^T p.
+ConvexSolid segment_solid(const SegmentShapeDef& shape, const SpatialTransform& X);
+
 // Whether two segments may collide (same figure: its self_pairs; two figures: both allow it).
 bool segments_may_collide(const Model& model, int figure_a, int segment_a, int figure_b,
                           int segment_b);

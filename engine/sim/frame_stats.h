@@ -10,6 +10,7 @@
 #include "collide/body_collisions.h"
 #include "control/joint_controller.h"
 #include "core/types.h"
+#include "sim/segment_body_collisions.h"
 #include "sim/step_stage.h"
 
 namespace pbm {
@@ -64,6 +65,7 @@ struct FrameStats {
   std::vector<BodyFrameStats> bodies;
   std::vector<FigureFrameStats> figures;
   BodyCollisionStats body_collisions;  // of the frame's last substep
+  SegmentBodyStats segment_bodies;     // segments with bodies, of the frame's last substep
   LevelStats levels;
   // Warnings about the model's solvers, '; '-separated (a constraint loop's dense fallback,
   // Baumgarte gains too stiff for dt): empty when all is well.

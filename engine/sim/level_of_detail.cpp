@@ -84,6 +84,11 @@ bool choose_levels(const Model& model, State& state, Workspace& ws, LevelStats& 
       obstacle_speed = std::max(obstacle_speed, o.velocity.norm() + o.angular_velocity.norm());
     }
     const bool bodies_collide = model.body_collisions.options.enabled;
+    // Segments that collide with bodies (sim/segment_body_collisions.h) keep every auto body
+    // awake: their reach would need the figures' kinematics at each frame's start, and a dormant
+    // body has no q_d for a segment to dent.
+    bool segments_collide = false;
+    for (const FigureDef& def : model.scene.figures) segments_collide |= def.body_collisions;
     for (int b = 0; b < n; ++b) {
       const BodyModel& body = model.bodies[b];
       if (!body.auto_level) continue;
@@ -92,7 +97,7 @@ bool choose_levels(const Model& model, State& state, Workspace& ws, LevelStats& 
       const Real dent = largest_node_norm(q_d), dent_rate = largest_node_norm(d_dot);
       const Reach& r = reach[b];
       bool wake = state.dormant[b] && (dent > 0 || dent_rate > 0);  // dented while dormant
-      wake = wake || pulled(model, b, state.time, state.time + lookahead);
+      wake = wake || pulled(model, b, state.time, state.time + lookahead) || segments_collide;
       if (!wake && !ws.drive.obstacles.empty()) {
         const Real clearance = min_obstacle_distance(ws.drive.obstacles, ws.bodies[b]);
         wake = clearance < r.travel + obstacle_speed * (1 + r.radius) * lookahead;

@@ -358,6 +358,27 @@ void figure_impacts(const SubstepContext& c) {
   if (c.model.segment_collisions) segment_impacts(c);
 }
 
+bool segment_bodies_present(const Model& model) {
+  if (model.bodies.empty()) return false;
+  for (const FigureDef& def : model.scene.figures) {
+    if (def.body_collisions) return true;
+  }
+  return false;
+}
+
+void size_segment_bodies(const Model& model, Workspace& ws) {
+  size_segment_body_workspace(model, ws.figures->bodies);
+}
+
+void segment_body_collisions(const SubstepContext& c) {
+  FiguresWorkspace& fw = *c.ws.figures;
+  all_figure_kinematics(c.model, c.state.q.data(), c.state.v.data(), fw);
+  const BodySet set{c.model.bodies, c.ws.bodies, c.state.q, c.state.v, c.state.time};
+  c.ws.segment_body_stats =
+      resolve_segment_body_collisions(c.model, set, fw.each, fw.worlds, c.dt, fw.bodies);
+  c.ws.contacts += c.ws.segment_body_stats.contacts;  // the end of 5.2.2's step reduction
+}
+
 void figure_dynamics(const RateContext& c) {
   FiguresWorkspace& fw = *c.ws.figures;
   for (std::size_t f = 0; f < c.model.figures.size(); ++f) {

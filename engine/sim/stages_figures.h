@@ -18,6 +18,11 @@ void figure_contact_forces(const RateContext& c);  // contact_forces
 // The impact stage runs where contacts can happen or a joint has limits.
 bool figure_impacts_present(const Model& model);
 void figure_impacts(const SubstepContext& c);  // impacts: (15.1)-(15.8), joint limits
+// Segments with deformable bodies (sim/segment_body_collisions.h), after the step at the
+// body_collisions stage: present where a figure with body_collisions meets a scene with bodies.
+bool segment_bodies_present(const Model& model);
+void size_segment_bodies(const Model& model, Workspace& ws);
+void segment_body_collisions(const SubstepContext& c);
 void figure_dynamics(const RateContext& c);    // dynamics: sec. 15.2, the articulated-body method
 void figure_kinematics(const RateContext& c);  // kinematics: q-dot from v
 void figure_kinematic_rates(const Model& model, const VecX& q, const VecX& v, VecX& q_dot);

@@ -62,6 +62,8 @@ const char* subsystem_name(SubsystemId id) {
       return "constraints";
     case SubsystemId::figures:
       return "figures";
+    case SubsystemId::segment_bodies:
+      return "segment_bodies";
     case SubsystemId::count:
       break;
   }

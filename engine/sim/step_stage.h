@@ -47,6 +47,7 @@ enum class SubsystemId {
   self_collision,
   constraints,
   figures,
+  segment_bodies,  // figures' segments with deformable bodies
   count
 };
 inline constexpr int kSubsystemCount = static_cast<int>(SubsystemId::count);

@@ -70,6 +70,10 @@ constexpr Subsystem kTable[] = {
      .measure = stages::measure_figures,
      .describe_failure = stages::describe_figure_failure,
      .add_drawables = stages::add_figure_drawables},
+    {.id = SubsystemId::segment_bodies,
+     .present = stages::segment_bodies_present,
+     .size_workspace = stages::size_segment_bodies,
+     .substep = {{{S::body_collisions, stages::segment_body_collisions}}}},
 };
 
 }  // namespace

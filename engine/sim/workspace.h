@@ -17,6 +17,7 @@
 #include "integrate/integrators.h"
 #include "sim/figure_collisions.h"
 #include "sim/frame_stats.h"
+#include "sim/segment_body_collisions.h"
 #include "sim/state.h"
 #include "sim/step_stage.h"
 #include "sim/tracks.h"
@@ -58,6 +59,8 @@ struct FiguresWorkspace {
   std::vector<std::vector<SpatialTransform>> worlds;
   SegmentCollisionScratch collision;
   std::vector<SegmentContact> segment_contacts;
+  // Collisions of segments with deformable bodies (sim/segment_body_collisions.h).
+  SegmentBodyWorkspace bodies;
 };
 
 struct Workspace {
@@ -78,6 +81,7 @@ struct Workspace {
   std::optional<BodyCollisionWorkspace> body_collisions;
   std::optional<FiguresWorkspace> figures;
   BodyCollisionStats body_collision_stats;  // of the last substep
+  SegmentBodyStats segment_body_stats;      // of the last substep
   int contacts = 0;  // touching nodes counted in the substep under way (-> State::contact_nodes)
   // Whether the substep under way is the last of its frame (advance_frame sets it before each;
   // a substep advanced alone ends its own frame). The mean-axis split of bodies without an

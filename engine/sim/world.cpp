@@ -175,6 +175,7 @@ bool advance_substep(const World& world, const Inputs& inputs, State& state, Rea
   const Model& model = *world.model;
   const SubstepContext context{model, inputs, ws, state, dt};
   ws.body_collision_stats = BodyCollisionStats{};
+  ws.segment_body_stats = SegmentBodyStats{};
   auto hook = world.substeps.begin();
   for (; hook != world.substeps.end() && hook->stage < StepStage::integrate; ++hook) {
     if (observer) (*observer)(hook->stage, hook->subsystem, false, state, ws);
@@ -392,6 +393,7 @@ FrameResult advance_frame(const World& world, const Inputs& inputs, State& state
       stats.evaluations = evaluations;
       stats.contacts = state.contact_nodes;
       stats.body_collisions = ws.body_collision_stats;
+      stats.segment_bodies = ws.segment_body_stats;
       stats.levels = levels;
       stats.notes = model.notes;
       ws.clock.switch_to(StepStage::count, SubsystemId::count);
