@@ -16,6 +16,7 @@
 #include "scene/scene_json.h"
 #include "sim/figure_collisions.h"
 #include "sim/simulation.h"
+#include "stage_watch.h"
 
 namespace pbm {
 namespace {
@@ -88,13 +89,8 @@ TEST(FigureCollisions, TwoFiguresKeepTheirMomentumAndLeaveWithTheirRestitution) 
         hit = u_after != u_before;
       }
     };
-    const StageObserver observer = watch;
-    int evaluations = 0;
-    for (int step = 0; step < 400 && !hit; ++step) {
-      ASSERT_TRUE(advance_substep(sim.world, sim.inputs, sim.state, sim.model.solver.dt, sim.ws,
-                                  evaluations, &observer));
-    }
-    ASSERT_TRUE(hit);
+    ASSERT_TRUE(test::step_until(
+        sim, watch, [&] { return hit; }, 400));
     const Real scale = p_before.tail<3>().cwiseAbs().maxCoeff() + 2.0;  // |m v| per sphere: 2
     std::printf("e = %.1f: u_n %.9f -> %.9f m/s (ratio %.9f); momentum change %.2e\n", e, u_before,
                 u_after, -u_after / u_before, (p_after - p_before).norm());
@@ -148,12 +144,8 @@ TEST(FigureCollisions, ABobBouncesOffItsOwnPostWithItsRestitution) {
     auto watch = [&](StepStage stage, SubsystemId, bool done, const State& state, Workspace&) {
       if (stage == StepStage::impacts) (done ? after : before) = state.v[0];
     };
-    const StageObserver observer = watch;
-    int evaluations = 0;
-    for (int step = 0; step < 2000 && after == before; ++step) {
-      ASSERT_TRUE(advance_substep(sim.world, sim.inputs, sim.state, sim.model.solver.dt, sim.ws,
-                                  evaluations, &observer));
-    }
+    ASSERT_TRUE(test::step_until(
+        sim, watch, [&] { return after != before; }, 2000));
     std::printf("e = %.1f: q %.6f rad (contact at %.6f), q-dot %.9f -> %.9f rad/s\n", e,
                 sim.state.q[0], kHitAngle, before, after);
     ASSERT_GT(before, 3.0);

@@ -15,6 +15,7 @@
 #include "scene/scene_json.h"
 #include "sim/simulation.h"
 #include "sim/snapshot.h"
+#include "stage_watch.h"
 
 namespace pbm {
 namespace {
@@ -286,17 +287,43 @@ TEST(FiguresWorld, ABoxDroppedOnTheFloorLeavesWithItsRestitution) {
       if (stage != StepStage::impacts) return;
       (done ? after : before) = state.v[5];
     };
-    const StageObserver observer = watch;
-    int evaluations = 0;
-    for (int step = 0; step < 1000 && !(after > before); ++step) {
-      ASSERT_TRUE(advance_substep(sim.world, sim.inputs, sim.state, sim.model.solver.dt, sim.ws,
-                                  evaluations, &observer));
-    }
+    ASSERT_TRUE(test::step_until(
+        sim, watch, [&] { return after > before; }, 1000));
     std::printf("e = %.1f: v_z %.6f -> %.12f m/s\n", e, before, after);
     ASSERT_LT(before, -4.0);  // it fell 1 m
     EXPECT_NEAR(after, -e * before, 1e-9 * std::abs(before));
     // Level, it stays level: the four corners' impulses are equal.
     EXPECT_LT(sim.state.v.head(3).norm(), 1e-9);
+  }
+}
+
+// A sphere on a free joint, no gravity, falling at 2 m/s onto a floor that rises at 1 m/s (a
+// track drives its point): the impact's law (15.2) holds relative to the floor, so the sphere
+// leaves at 1 + 3 e m/s.
+TEST(FiguresWorld, AnImpactOnAMovingFloorTakesTheFloorsVelocity) {
+  for (const Real e : {0.0, 0.5, 1.0}) {
+    char text[1024];
+    std::snprintf(text, sizeof text,
+                  R"({"gravity": [0, 0, 0], "solver": {"dt": 0.001, "fps": 50, "integrator": "rk4"},
+                      "obstacles": [{"name": "floor"}],
+                      "tracks": [{"target": "obstacles[0].point[2]", "interpolation": "linear",
+                                  "keys": [[0, 0], [1, 1]]}],
+                      "figures": [{"name": "ball", "restitution": %.17g, "segments": [
+                        {"joint": {"kind": "free", "q0": [0, 0, 0.5, 1, 0, 0, 0],
+                                   "v0": [0, 0, 0, 0, 0, -2]},
+                         "shape": {"kind": "sphere", "size": [0.1, 0.1, 0.1]}, "mass": 1}]}]})",
+                  e);
+    Simulation sim(parse_scene(text, "moving-floor.json"));
+    Real before = 0, after = 0;
+    auto watch = [&](StepStage stage, SubsystemId, bool done, const State& state, Workspace&) {
+      if (stage == StepStage::impacts) (done ? after : before) = state.v[5];
+    };
+    ASSERT_TRUE(test::step_until(
+        sim, watch, [&] { return after != before; }, 1000));
+    std::printf("e = %.1f: v_z %.12f -> %.12f m/s at t = %.3f s\n", e, before, after,
+                sim.state.time);
+    EXPECT_EQ(before, -2.0);
+    EXPECT_NEAR(after, 1 + 3 * e, 1e-12);
   }
 }
 

@@ -2,16 +2,20 @@
 // its speed (e = 0, 0.5, 1); an elbow striking its limit in a swinging two-link arm keeps the
 // arm's kinetic energy at e = 1 and moves the shoulder too; a pendulum held by its limit against
 // gravity rests where the limit's spring balances its weight, the closed form at two steps (a
-// shorter step, a harder limit); the spring's stiffness is k = I (0.5 / dt)^2.
+// shorter step, a harder limit); the spring's stiffness is k = I (0.5 / dt)^2. A spherical joint's
+// swing cone: a rod swinging and twisting into it leaves at -e times its swing rate with its twist
+// untouched, and a rod held out sideways rests on its cone where the spring holds its weight.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <string>
 
+#include "figure/joint_limits.h"
 #include "figure/joint_space_inertia.h"
 #include "scene/scene_json.h"
 #include "sim/simulation.h"
+#include "stage_watch.h"
 
 namespace pbm {
 namespace {
@@ -49,13 +53,8 @@ std::pair<Real, Real> first_limit_impact(Simulation& sim, int index) {
       hit = after != before;
     }
   };
-  const StageObserver observer = watch;
-  int evaluations = 0;
-  for (int step = 0; step < 5000 && !hit; ++step) {
-    EXPECT_TRUE(advance_substep(sim.world, sim.inputs, sim.state, sim.model.solver.dt, sim.ws,
-                                evaluations, &observer));
-  }
-  EXPECT_TRUE(hit);
+  EXPECT_TRUE(test::step_until(
+      sim, watch, [&] { return hit; }, 5000));
   return {before, after};
 }
 
@@ -118,13 +117,8 @@ TEST(JointLimits, AnElbowStrikingItsLimitMovesTheShoulderAndKeepsTheEnergyAtEOne
         hit = after != before;
       }
     };
-    const StageObserver observer = watch;
-    int evaluations = 0;
-    for (int step = 0; step < 5000 && !hit; ++step) {
-      ASSERT_TRUE(advance_substep(sim.world, sim.inputs, sim.state, sim.model.solver.dt, sim.ws,
-                                  evaluations, &observer));
-    }
-    ASSERT_TRUE(hit);
+    ASSERT_TRUE(test::step_until(
+        sim, watch, [&] { return hit; }, 5000));
     std::printf(
         "e = %.0f: elbow %.9f -> %.9f, shoulder %.9f -> %.9f rad/s, energy %.12f -> "
         "%.12f J\n",
@@ -174,6 +168,88 @@ TEST(JointLimits, APendulumRestsOnItsLimitWhereTheSpringHoldsItsWeight) {
   }
   // k grows as 1 / dt^2: half the step, a quarter of the overshoot.
   EXPECT_NEAR(overshoot[1] / overshoot[0], 0.25, 0.01);
+}
+
+// A rod (capsule r 0.05, straight half length 0.3, centre 0.35 m out along the child's z, 2 kg)
+// on a spherical joint with a swing cone of 0.5 rad (0.3 with gravity). `orientation`: the joint
+// frame's axes in the world's.
+std::string rod_on_a_cone(Real g, Real e, Real cone, const std::string& orientation,
+                          const std::string& v0) {
+  char text[1536];
+  std::snprintf(
+      text, sizeof text,
+      R"({"gravity": [0, 0, %.17g], "solver": {"dt": 0.001, "fps": 50, "integrator": "rk4"},
+                    "figures": [{"name": "rod", "segments": [
+                      {"joint": {"kind": "spherical", "position": [0, 0, 1],
+                                 "orientation": %s, "swing_limit": %.17g,
+                                 "limit_restitution": %.17g, "damping": %g, "v0": %s},
+                       "shape": {"kind": "capsule", "size": [0.05, 0.05, 0.3],
+                                 "center": [0, 0, 0.35]}, "mass": 2}]}]})",
+      -g, orientation.c_str(), cone, e, g > 0 ? 0.5 : 0.0, v0.c_str());
+  return text;
+}
+
+TEST(JointLimits, ARodSwingingIntoItsConeLeavesWithItsRestitutionAndKeepsItsTwist) {
+  for (const Real e : {0.0, 0.5, 1.0}) {
+    // Swinging at 2 rad/s about (1, 1, 0) / sqrt 2 and twisting at 1 rad/s about its own axis.
+    Simulation sim(parse_scene(rod_on_a_cone(0, e, 0.5, "[1, 0, 0, 0]",
+                                             "[1.4142135623730951, "
+                                             "1.4142135623730951, 1]"),
+                               "cone.json"));
+    const JointLimit& cone = sim.model.figures[0].limits.at(0);
+    ASSERT_TRUE(cone.swing);
+    Real before = 0, after = 0, twist_before = 0, twist_after = 0, angle = 0;
+    bool hit = false;
+    auto watch = [&](StepStage stage, SubsystemId, bool done, const State& state, Workspace&) {
+      if (stage != StepStage::impacts || hit) return;
+      const Vec3 g = limit_row(cone, state.q.data());
+      const Real rate = g.dot(state.v.head<3>());
+      if (!done) {
+        before = rate;
+        twist_before = state.v[2];
+        angle = limit_coordinate(cone, state.q.data());
+      } else {
+        after = rate;
+        twist_after = state.v[2];
+        hit = after != before;
+      }
+    };
+    ASSERT_TRUE(test::step_until(
+        sim, watch, [&] { return hit; }, 2000));
+    std::printf("e = %.1f: at %.6f rad, swing rate %.12f -> %.12f rad/s, twist %.15f -> %.15f\n", e,
+                angle, before, after, twist_before, twist_after);
+    EXPECT_GT(angle, 0.5);
+    EXPECT_LT(angle, 0.5 + 2 * 0.001 * 2.1);  // found within the step that crossed it
+    EXPECT_NEAR(after, -e * before, 1e-12 * std::abs(before));
+    EXPECT_NEAR(twist_after, twist_before, 1e-12);
+  }
+}
+
+TEST(JointLimits, ARodHeldOutSidewaysRestsOnItsConeWhereTheSpringHoldsItsWeight) {
+  // The joint frame's z along the world's x (a quarter turn about y): the rod starts horizontal
+  // and swings down until its cone of 0.3 rad holds it. At rest the cone's spring balances the
+  // weight's torque: k (theta - 0.3) = m g d cos theta, d = 0.35 m.
+  const Real g = 9.81;
+  Simulation sim(parse_scene(
+      rod_on_a_cone(g, 0, 0.3, "[0.7071067811865476, 0, 0.7071067811865476, 0]", "[0, 0, 0]"),
+      "cone.json"));
+  for (int frame = 0; frame < 250; ++frame) ASSERT_TRUE(advance_frame(sim).ok) << frame;
+  const JointLimit& cone = sim.model.figures[0].limits.at(0);
+  const Real k = cone.stiffness;
+  Real theta = 0.3;
+  for (int it = 0; it < 50; ++it) {  // Newton on k (theta - 0.3) - m g d cos theta
+    const Real f = k * (theta - 0.3) - 2 * g * 0.35 * std::cos(theta);
+    theta -= f / (k + 2 * g * 0.35 * std::sin(theta));
+  }
+  const Real rest = limit_coordinate(cone, sim.state.q.data());
+  std::printf("k = %.6f N m/rad: rests at %.12f rad, closed form %.12f; speed %.2e rad/s\n", k,
+              rest, theta, sim.state.v.norm());
+  EXPECT_NEAR(rest, theta, 1e-9);
+  EXPECT_LT(sim.state.v.norm(), 1e-8);
+  EXPECT_NEAR(sim.stats.figures[0].elastic, 0.5 * k * (rest - 0.3) * (rest - 0.3), 1e-12);
+  // The spring is the swing's: k = I (0.5 / dt)^2 with I the rod's inertia about the joint across
+  // its axis, m (d^2 + ...) from H at q0: at least m d^2.
+  EXPECT_GT(k, 2 * 0.35 * 0.35 * 250 * 250);
 }
 
 }  // namespace

@@ -156,6 +156,16 @@ TEST(SceneFiguresJsonErrors, ErrorsNameTheirPath) {
       {{{{"joint", {{"limit_restitution", 1.5}}}}},
        "figures[0].segments[0].joint.limit_restitution",
        "must be in [0, 1]"},
+      // A swing cone: spherical joints only, below pi, q0 inside it.
+      {{{{"joint", {{"swing_limit", 0.5}}}}},
+       "figures[0].segments[0].joint.swing_limit",
+       "not valid for a revolute joint"},
+      {{{{"joint", {{"kind", "spherical"}, {"swing_limit", 3.5}}}}},
+       "figures[0].segments[0].joint.swing_limit",
+       "must be in (0, pi)"},
+      {{{{"joint", {{"kind", "spherical"}, {"swing_limit", 0.5}, {"q0", {0.9, 0.5, 0, 0}}}}}},
+       "figures[0].segments[0].joint.q0",
+       "swing 1.0"},
   };
   for (const auto& [segments, path, message] : cases) {
     expect_error(json{{"figures", {{{"segments", segments}}}}}, path, message);

@@ -240,12 +240,14 @@ CompiledFigure build_figure_model(const FigureDef& def, const std::string& file,
   out.self_pairs = self_collision_pairs(def, figure, index, file, path);
   out.limits = compile_joint_limits(def, figure, file, path);
   for (const JointLimit& l : out.limits) {
-    const Real q = out.q0[l.q_index];
+    const Real q = limit_coordinate(l, out.q0.data());
     if (q < l.lower || q > l.upper) {
       throw Error(file,
                   path + ".segments[" + std::to_string(l.segment) + "].joint." +
                       (def.segments[l.segment].joint.q0.empty() ? "lower" : "q0"),
-                  "the initial position " + std::to_string(q) + " is outside [lower, upper]");
+                  l.swing
+                      ? "the initial swing " + std::to_string(q) + " rad is outside swing_limit"
+                      : "the initial position " + std::to_string(q) + " is outside [lower, upper]");
     }
   }
   out.controllers = compile_figure_controllers(def, figure, file, path);

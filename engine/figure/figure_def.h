@@ -47,9 +47,12 @@ struct JointDef {
   // impact of its own, q-dot+ = -limit_restitution q-dot- on that DOF (15.2); past it, a stiff
   // spring-damper pushes it back (figure/joint_limits.h).
   std::vector<Real> lower, upper;  // [rad or m]
-  Real limit_restitution = 0;      // in [0, 1]
-  std::vector<Real> q0;            // initial q (empty: at rest; a quaternion as w, x, y, z)
-  std::vector<Real> v0;            // initial v (empty: zero)
+  // Spherical joints: a swing cone, the angle between the child's z axis and the joint frame's
+  // kept within swing_limit (0: none) [rad], in (0, pi).
+  Real swing_limit = 0;
+  Real limit_restitution = 0;  // in [0, 1]
+  std::vector<Real> q0;        // initial q (empty: at rest; a quaternion as w, x, y, z)
+  std::vector<Real> v0;        // initial v (empty: zero)
 };
 
 // An attachment frame on a segment (sec. 15.1.1), for joints of children, actuators and drawing.

@@ -161,6 +161,9 @@ bool impact_in(std::span<const ImpactFigure> figures, std::span<const ImpactCont
     sys.W.noalias() += J * HinvJt;
     sys.u.noalias() += J * Eigen::Map<const VecX>(figures[f].v, n_v);
   }
+  for (int c = 0; c < m; ++c) {
+    if (contacts[c].figure_b < 0) sys.u.template segment<3>(3 * c) -= contacts[c].surface_velocity;
+  }
   const bool projected = solve_impulses(contacts, settings, sys);
   for (std::size_t f = 0; f < figures.size(); ++f) {
     const int n_v = figures[f].model->n_v;

@@ -34,6 +34,9 @@ struct ImpactContact {
   int figure_b = -1, segment_b = -1;  // the second, or -1: a fixed surface
   Vec3 point = Vec3::Zero();          // world [m]
   Vec3 normal = Vec3::UnitZ();        // world, unit, from b toward a
+  // With b a surface (figure_b = -1): the velocity of its material at the point [m/s]. A moving
+  // obstacle is infinitely massive: the contact law (15.2) holds for the velocity relative to it.
+  Vec3 surface_velocity = Vec3::Zero();
 };
 
 enum class ImpactFriction {

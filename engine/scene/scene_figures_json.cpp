@@ -91,11 +91,19 @@ constexpr auto kJointFields = std::to_array<Field<JointDef>>({
                                      .kinds = kHasAxis,
                                      .default_note = "unlimited",
                                      .description = "The greatest q per DOF, each above lower's."}),
+    value<&JointDef::swing_limit>(
+        {.key = "swing_limit",
+         .unit = "rad",
+         .range = kNonNegative,
+         .kinds = kind_bit(JointKind::spherical),
+         .description = "A swing cone: the angle between the child's z axis and the joint "
+                        "frame's stays within it (0: none; below pi)."}),
     value<&JointDef::limit_restitution>(
         {.key = "limit_restitution",
          .range = kUnitInterval,
-         .kinds = kHasAxis,
-         .description = "e of (15.2) when a DOF strikes its limit: q-dot+ = -e q-dot-."}),
+         .kinds = kHasSpring,
+         .description = "e of (15.2) when a DOF strikes its limit (or a swing its cone): "
+                        "q-dot+ = -e q-dot-."}),
     joint_numbers<&JointDef::q0>(
         {.key = "q0",
          .unit = "rad or m",

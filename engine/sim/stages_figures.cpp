@@ -334,15 +334,17 @@ void figure_impacts(const SubstepContext& c) {
     // faster than impact_speed have their impact together, (15.1)-(15.8).
     for (const ObstacleModel& obstacle : c.ws.drive.obstacles) {
       fw.impacts.clear();
-      for_each_contact(figure, def, w, fw.world, Obstacles(&obstacle, 1),
-                       [&](int i, const ContactPoint& contact, const ObstacleModel&) {
-                         if (contact.velocity.dot(contact.normal) < -def.impact_speed) {
-                           fw.impacts.push_back({.figure_a = 0,
-                                                 .segment_a = i,
-                                                 .point = contact.point,
-                                                 .normal = contact.normal});
-                         }
-                       });
+      for_each_contact(
+          figure, def, w, fw.world, Obstacles(&obstacle, 1),
+          [&](int i, const ContactPoint& contact, const ObstacleModel&) {
+            if (contact.velocity.dot(contact.normal) < -def.impact_speed) {
+              fw.impacts.push_back({.figure_a = 0,
+                                    .segment_a = i,
+                                    .point = contact.point,
+                                    .normal = contact.normal,
+                                    .surface_velocity = obstacle.velocity_at(contact.point)});
+            }
+          });
       if (fw.impacts.empty()) continue;
       const ImpactFigure one{&figure, fw.q.data(), fw.v.data()};
       resolve_impact({&one, 1}, fw.impacts,

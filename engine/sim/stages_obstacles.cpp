@@ -53,11 +53,11 @@ void measure_obstacles(const Model& model, const State& state, Workspace& ws, Fr
   }
 }
 
-// Kinetic energy moving obstacles may give the bodies in a frame from t0 to t1 [J]. An obstacle
-// is infinitely massive: a body it meets at surface speed w leaves with up to 2 w (an elastic
-// bounce, 5.11), so every body may gain 0.5 m (2 w)^2 with w the fastest surface point of any
-// obstacle at the frame's start, middle or end. The surface speed is |v| + |omega| times the
-// obstacle's reach from its point. 0 when nothing moves.
+// Kinetic energy moving obstacles may give the bodies and figures in a frame from t0 to t1 [J]. An
+// obstacle is infinitely massive: a body or segment it meets at surface speed w leaves with up to
+// 2 w (an elastic bounce, 5.11; e = 1 in (15.2)), so every one may gain 0.5 m (2 w)^2 with w the
+// fastest surface point of any obstacle at the frame's start, middle or end. The surface speed is
+// |v| + |omega| times the obstacle's reach from its point. 0 when nothing moves.
 Real obstacle_energy_allowance(const Model& model, const Inputs& inputs, const State& state,
                                Real t_end, Workspace& ws) {
   bool any = false;
@@ -80,6 +80,9 @@ Real obstacle_energy_allowance(const Model& model, const Inputs& inputs, const S
   }
   Real mass = 0;
   for (const BodyModel& body : model.bodies) mass += body.mass;
+  for (const CompiledFigure& figure : model.figures) {
+    for (const SegmentModel& segment : figure.model.segments) mass += segment.inertia.m;
+  }
   return 0.5 * mass * (2 * w) * (2 * w);
 }
 
