@@ -1,7 +1,8 @@
 // The narrowphase of segment-segment collisions (collide/convex_contacts.h) against closed forms:
 // two spheres, a sphere on a box's face, two crossed capsules, a box standing on a box (four
-// points, one at each corner of the smaller face), an upright cylinder on a box, solids apart,
-// and the same pair swapped (the normal turns round). Bullet is single precision here: 1e-5 m.
+// points, one at each corner of the smaller face), a capsule lying on a box and a log on a log
+// (two points, under their ends), an upright cylinder on a box, solids apart, and the same pair
+// swapped (the normal turns round). Bullet is single precision here: 1e-5 m.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -64,6 +65,49 @@ TEST(ConvexContacts, CrossedCapsulesTouchWhereTheirAxesPassClosest) {
   EXPECT_NEAR(out[0].depth, 0.05, kTolerance);
   expect_near(out[0].normal, Vec3::UnitZ(), kTolerance);
   expect_near(out[0].point, Vec3(0, 0, 0.075), kTolerance);
+}
+
+TEST(ConvexContacts, ACapsuleLyingOnABoxRestsOnBothEnds) {
+  // Along x, turned 0.5 rad about z, 1 cm into a slab's top (z = 0.1): its end spheres' bottoms.
+  const Mat3 lying =
+      about_z(0.5) * Eigen::AngleAxis<Real>(std::numbers::pi / 2, Vec3::UnitY()).toRotationMatrix();
+  const ConvexSolid log =
+      solid(ConvexKind::capsule, Vec3(0.05, 0, 0.3), Vec3(0.1, 0.2, 0.14), lying);
+  const ConvexSolid slab = solid(ConvexKind::box, Vec3(1, 1, 0.1), Vec3::Zero());
+  const Vec3 axis = lying.col(2);
+  for (const bool swapped : {false, true}) {
+    ConvexContacts out;
+    ASSERT_EQ(swapped ? convex_contacts(slab, log, out) : convex_contacts(log, slab, out), 2);
+    for (int k = 0; k < 2; ++k) {
+      EXPECT_NEAR(out[k].depth, 0.01, kTolerance);
+      expect_near(out[k].normal, swapped ? Vec3(-Vec3::UnitZ()) : Vec3(Vec3::UnitZ()), kTolerance);
+      // Under the ends, midway between the slab's top and the capsule's bottom.
+      const Vec3 end = Vec3(0.1, 0.2, 0.095) + (k == 0 ? -0.3 : 0.3) * axis;
+      expect_near(out[k].point, end, kTolerance);
+    }
+  }
+  // Tilted onto one end, one point: the deepest.
+  const Mat3 tilted =
+      Eigen::AngleAxis<Real>(std::numbers::pi / 2 - 0.2, Vec3::UnitY()).toRotationMatrix();
+  const ConvexSolid leaning = solid(ConvexKind::capsule, Vec3(0.05, 0, 0.3),
+                                    Vec3(0, 0, 0.14 + 0.3 * std::sin(0.2)), tilted);
+  ConvexContacts out;
+  EXPECT_EQ(convex_contacts(leaning, slab, out), 1);
+}
+
+TEST(ConvexContacts, ALogOnALogTouchesUnderBothEnds) {
+  // Two parallel capsules along x, one 0.19 m above the other (radii 0.1 each: 1 cm overlap).
+  const Mat3 along_x =
+      Eigen::AngleAxis<Real>(std::numbers::pi / 2, Vec3::UnitY()).toRotationMatrix();
+  const ConvexSolid top = solid(ConvexKind::capsule, Vec3(0.1, 0, 0.4), Vec3(0, 0, 0.19), along_x);
+  const ConvexSolid bottom = solid(ConvexKind::capsule, Vec3(0.1, 0, 0.4), Vec3::Zero(), along_x);
+  ConvexContacts out;
+  ASSERT_EQ(convex_contacts(top, bottom, out), 2);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_NEAR(out[k].depth, 0.01, kTolerance);
+    expect_near(out[k].normal, Vec3::UnitZ(), kTolerance);
+    expect_near(out[k].point, Vec3(k == 0 ? -0.4 : 0.4, 0, 0.095), kTolerance);
+  }
 }
 
 TEST(ConvexContacts, ABoxStandsOnABoxAtFourCorners) {

@@ -76,33 +76,71 @@ struct Collector final : btDiscreteCollisionDetectorInterface::Result {
   }
 };
 
-}  // namespace
-
-int convex_contacts(const ConvexSolid& a, const ConvexSolid& b, ConvexContacts& out) {
+// The deepest point of two overlapping solids by GJK and EPA; false when they do not overlap.
+bool deepest_contact(const ConvexSolid& a, const ConvexSolid& b, ConvexContact& out) {
   BulletShape storage_a, storage_b;
   btConvexShape& shape_a = make_shape(a, storage_a);
   btConvexShape& shape_b = make_shape(b, storage_b);
   btDiscreteCollisionDetectorInterface::ClosestPointInput input;
   input.m_transformA = transform_of(a);
   input.m_transformB = transform_of(b);
-  if (a.kind == ConvexKind::box && b.kind == ConvexKind::box) {
-    Collector collector;
-    collector.out = &out;
-    btBoxBoxDetector detector(&std::get<btBoxShape>(storage_a), &std::get<btBoxShape>(storage_b));
-    detector.getClosestPoints(input, collector, nullptr);
-    return collector.count;
-  }
   // A fresh simplex and a fixed first axis on every call: no state carried between calls.
   btVoronoiSimplexSolver simplex;
   btGjkEpaPenetrationDepthSolver epa;
   btGjkPairDetector gjk(&shape_a, &shape_b, &simplex, &epa);
   btPointCollector closest;
   gjk.getClosestPoints(input, closest, nullptr);
-  if (!closest.m_hasResult || !(closest.m_distance < 0)) return 0;
+  if (!closest.m_hasResult || !(closest.m_distance < 0)) return false;
   const Vec3 n = ours(closest.m_normalOnBInWorld).normalized();
-  out[0] = {ours(closest.m_pointInWorld) + 0.5 * closest.m_distance * n, n,
-            -Real(closest.m_distance)};
-  return 1;
+  out = {ours(closest.m_pointInWorld) + 0.5 * closest.m_distance * n, n, -Real(closest.m_distance)};
+  return true;
+}
+
+// One of a capsule's end spheres (end = -1 or +1), as a solid.
+ConvexSolid capsule_end(const ConvexSolid& capsule, Real end) {
+  return {.kind = ConvexKind::sphere,
+          .size = Vec3::Constant(capsule.size.x()),
+          .rotation = capsule.rotation,
+          .center = capsule.center + end * capsule.size.z() * capsule.rotation.col(2)};
+}
+
+}  // namespace
+
+int convex_contacts(const ConvexSolid& a, const ConvexSolid& b, ConvexContacts& out) {
+  if (a.kind == ConvexKind::box && b.kind == ConvexKind::box) {
+    BulletShape storage_a, storage_b;
+    make_shape(a, storage_a);
+    make_shape(b, storage_b);
+    btDiscreteCollisionDetectorInterface::ClosestPointInput input;
+    input.m_transformA = transform_of(a);
+    input.m_transformB = transform_of(b);
+    Collector collector;
+    collector.out = &out;
+    btBoxBoxDetector detector(&std::get<btBoxShape>(storage_a), &std::get<btBoxShape>(storage_b));
+    detector.getClosestPoints(input, collector, nullptr);
+    return collector.count;
+  }
+  // A capsule lying along the other solid touches it along a line: GJK's one deepest point would
+  // let it rock on that point, so where both its end spheres touch, they are its two points (a
+  // log on the floor, two logs stacked). Otherwise (crossing, tilted onto one end) the deepest
+  // point of the whole capsule. A sphere touches a capsule at one point anyway.
+  const bool a_capsule = a.kind == ConvexKind::capsule && b.kind != ConvexKind::sphere;
+  const bool b_capsule = b.kind == ConvexKind::capsule && a.kind != ConvexKind::sphere;
+  if (a_capsule || b_capsule) {
+    ConvexContacts ends;
+    int n = 0;
+    for (const Real end : {-1.0, 1.0}) {
+      const bool touches = a_capsule ? deepest_contact(capsule_end(a, end), b, ends[n])
+                                     : deepest_contact(a, capsule_end(b, end), ends[n]);
+      n += touches ? 1 : 0;
+    }
+    if (n == 2) {
+      out[0] = ends[0];
+      out[1] = ends[1];
+      return 2;
+    }
+  }
+  return deepest_contact(a, b, out[0]) ? 1 : 0;
 }
 
 Box3 convex_bounds(const ConvexSolid& s) {
