@@ -58,23 +58,23 @@ std::pair<Real, Real> first_limit_impact(Simulation& sim, int index) {
   return {before, after};
 }
 
-MatX inverse_inertia(const Model& model, const State& state) {
+// The first figure's joint-space inertia H at the state.
+MatX inertia(const Model& model, const State& state) {
   const FigureModel& figure = model.figures[0].model;
   FigureWorkspace ws;
   size_figure_workspace(figure, ws);
   MatX H;
   joint_space_inertia(figure, state.q.data(), ws, H);
-  return H.inverse();
+  return H;
+}
+
+MatX inverse_inertia(const Model& model, const State& state) {
+  return inertia(model, state).inverse();
 }
 
 Real kinetic_energy(const Model& model, const State& state) {
-  const FigureModel& figure = model.figures[0].model;
-  FigureWorkspace ws;
-  size_figure_workspace(figure, ws);
-  MatX H;
-  joint_space_inertia(figure, state.q.data(), ws, H);
-  const VecX v = state.v.head(figure.n_v);
-  return 0.5 * v.dot(H * v);
+  const VecX v = state.v.head(model.figures[0].model.n_v);
+  return 0.5 * v.dot(inertia(model, state) * v);
 }
 
 TEST(JointLimits, AHingeStrikingItsLimitLeavesWithItsRestitution) {
