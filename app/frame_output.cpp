@@ -123,8 +123,8 @@ std::string frame_stats_json(const World& world, const FrameStats& s, long frame
                                {"contacts", fs.contacts}};
       // The controllers' plot of figs. 15.7, 15.8: desired, reference model and actual position
       // per controlled DOF, with the actuator's output.
+      if (compiled.n_control > 0) figure["actuator_work"] = fs.work;
       if (!compiled.controllers.empty()) {
-        figure["actuator_work"] = fs.work;
         nlohmann::json controllers = nlohmann::json::array();
         for (std::size_t k = 0; k < compiled.controllers.size(); ++k) {
           const JointController& c = compiled.controllers[k];
@@ -138,6 +138,22 @@ std::string frame_stats_json(const World& world, const FrameStats& s, long frame
                                  {"saturated", sample.saturated}});
         }
         figure["controllers"] = std::move(controllers);
+      }
+      // The strings of site trajectories: where each pulls, where its site is, and how hard.
+      if (!compiled.site_actuators.empty()) {
+        const auto xyz = [](const Vec3& x) { return nlohmann::json{x.x(), x.y(), x.z()}; };
+        nlohmann::json actuators = nlohmann::json::array();
+        for (std::size_t k = 0; k < compiled.site_actuators.size(); ++k) {
+          const SiteActuatorDef& d = compiled.site_actuators[k].def;
+          const SitePull& pull = fs.site_actuators[k];
+          actuators.push_back({{"segment", d.segment},
+                               {"site", d.site},
+                               {"target", xyz(pull.target)},
+                               {"position", xyz(pull.position)},
+                               {"force", xyz(pull.force)},
+                               {"saturated", pull.saturated}});
+        }
+        figure["site_actuators"] = std::move(actuators);
       }
       figures.push_back(std::move(figure));
     }

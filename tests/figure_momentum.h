@@ -5,21 +5,16 @@
 
 #include <vector>
 
-#include "figure/figure_impact.h"
-#include "figure/figure_kinematics.h"
+#include "figure_points.h"
 
 namespace pbm::test {
 
 inline Vec6 momentum(const FigureModel& figure, const Real* q, const Real* v) {
-  FigureWorkspace ws;
-  size_figure_workspace(figure, ws);
-  figure_kinematics(figure, q, v, ws);
-  std::vector<SpatialTransform> world;
-  segment_world_transforms(figure, ws, world);
+  const FigurePose pose = pose_of(figure, q, v);
   Vec6 total = Vec6::Zero();
   for (int i = 0; i < figure.size(); ++i) {
-    const ForceVector h = force_from_vec6(ws.inertia[i] * ws.v[i]);
-    total += to_vec6(transform_force(inverse(world[i]), h));
+    const ForceVector h = force_from_vec6(pose.ws.inertia[i] * pose.ws.v[i]);
+    total += to_vec6(transform_force(inverse(pose.world[i]), h));
   }
   return total;
 }

@@ -31,7 +31,7 @@ inline std::string read_text(const std::string& path) {
 // Every section and both forms of every choice (named and array q_s, node and material point,
 // plane and box), with values chosen so that defaults and normalization are visible.
 inline json full_scene() {
-  return json::parse(R"({
+  json scene = json::parse(R"({
     "name": "jello-ball",
     "gravity": [0, 0, -9.81],
     "camera": {"position": [0, -10, 3], "target": [0, 0, 1], "up": [0, 0, 2], "fov": 35},
@@ -117,9 +117,47 @@ inline json full_scene() {
          "keys": [[0, 0.2]], "kp": 30, "kd": 2},
         {"kind": "stable_pd", "joint": "segment4", "keys": [[0.5, 0.1], [2, -0.1]],
          "interpolation": "step", "kp": 1e5, "kd": 100}
+      ],
+       "site_actuators": [
+        {"segment": "upper", "site": "elbow", "interpolation": "linear", "x": [[0, 0.1]],
+         "y": [[0, 0], [1, 0.2]], "z": [[0, 1.5], [0.5, 1.4], [2, 1.6]], "stiffness": 300,
+         "damping": 7, "max_force": 80},
+        {"segment": "base", "x": [[0, 0]], "y": [[0, 0]], "z": [[0, 1]]}
+      ],
+       "impulses": [
+        {"time": 0.5, "segment": "upper", "site": "elbow", "impulse": [1, -2, 3],
+         "angular": [0.1, 0, 0], "frame": "site"},
+        {"time": 0.25, "segment": "base", "impulse": [0, 0, 4]}
       ]}
     ]
   })");
+  // Motion capture needs a real clip: the repository's, by its absolute path.
+  scene["figures"][0]["mocap"] = {
+      {"file", std::string(PBM_SOURCE_DIR) + "/scenes/mocap/wave.bvh"},
+      {"scale", 0.02},
+      {"position", {0.5, 0, 0}},
+      {"orientation", {0.7071067811865476, 0.7071067811865476, 0, 0}},
+      {"start", 0.25},
+      {"sites", {{{"bvh", "LeftForeArm"}, {"segment", "upper"}, {"site", "elbow"}}}},
+      {"controller", "mrac"},
+      {"kp", 5},
+      {"kd", 0.5},
+      {"settling_time", 0.2},
+      {"alpha", 3},
+      {"beta", 1},
+      {"max_output", 30},
+      {"stiffness", 250},
+      {"damping", 4},
+      {"max_force", 60}};
+  return scene;
+}
+
+inline void expect_same_keys(const std::vector<Keyframe>& a, const std::vector<Keyframe>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t j = 0; j < a.size(); ++j) {
+    EXPECT_EQ(a[j].time, b[j].time);
+    EXPECT_EQ(a[j].value, b[j].value);
+  }
 }
 
 // Every field of a and b equal, bit for bit.
@@ -244,11 +282,7 @@ inline void expect_same_scene(const Scene& a, const Scene& b) {
   for (std::size_t i = 0; i < a.tracks.size(); ++i) {
     EXPECT_EQ(a.tracks[i].target, b.tracks[i].target);
     EXPECT_EQ(a.tracks[i].interpolation, b.tracks[i].interpolation);
-    ASSERT_EQ(a.tracks[i].keys.size(), b.tracks[i].keys.size());
-    for (std::size_t j = 0; j < a.tracks[i].keys.size(); ++j) {
-      EXPECT_EQ(a.tracks[i].keys[j].time, b.tracks[i].keys[j].time);
-      EXPECT_EQ(a.tracks[i].keys[j].value, b.tracks[i].keys[j].value);
-    }
+    expect_same_keys(a.tracks[i].keys, b.tracks[i].keys);
   }
   ASSERT_EQ(a.figures.size(), b.figures.size());
   for (std::size_t f = 0; f < a.figures.size(); ++f) {
@@ -308,17 +342,69 @@ inline void expect_same_scene(const Scene& a, const Scene& b) {
       EXPECT_EQ(x.joint, y.joint);
       EXPECT_EQ(x.dof, y.dof);
       EXPECT_EQ(x.interpolation, y.interpolation);
-      ASSERT_EQ(x.keys.size(), y.keys.size());
-      for (std::size_t j = 0; j < x.keys.size(); ++j) {
-        EXPECT_EQ(x.keys[j].time, y.keys[j].time);
-        EXPECT_EQ(x.keys[j].value, y.keys[j].value);
-      }
+      expect_same_keys(x.keys, y.keys);
       EXPECT_EQ(x.settling_time, y.settling_time);
       EXPECT_EQ(x.alpha, y.alpha);
       EXPECT_EQ(x.beta, y.beta);
       EXPECT_EQ(x.kp, y.kp);
       EXPECT_EQ(x.kd, y.kd);
       EXPECT_EQ(x.max_output, y.max_output);
+    }
+    ASSERT_EQ(a.figures[f].site_actuators.size(), b.figures[f].site_actuators.size());
+    for (std::size_t k = 0; k < a.figures[f].site_actuators.size(); ++k) {
+      const SiteActuatorDef& x = a.figures[f].site_actuators[k];
+      const SiteActuatorDef& y = b.figures[f].site_actuators[k];
+      EXPECT_EQ(x.segment, y.segment);
+      EXPECT_EQ(x.site, y.site);
+      EXPECT_EQ(x.interpolation, y.interpolation);
+      expect_same_keys(x.x, y.x);
+      expect_same_keys(x.y, y.y);
+      expect_same_keys(x.z, y.z);
+      EXPECT_EQ(x.stiffness, y.stiffness);
+      EXPECT_EQ(x.damping, y.damping);
+      EXPECT_EQ(x.max_force, y.max_force);
+    }
+    ASSERT_EQ(a.figures[f].mocap.has_value(), b.figures[f].mocap.has_value());
+    if (a.figures[f].mocap) {
+      const MocapDef& x = *a.figures[f].mocap;
+      const MocapDef& y = *b.figures[f].mocap;
+      EXPECT_EQ(x.file, y.file);
+      EXPECT_EQ(x.scale, y.scale);
+      EXPECT_EQ(x.position, y.position);
+      EXPECT_EQ(x.orientation, y.orientation);
+      EXPECT_EQ(x.start, y.start);
+      ASSERT_EQ(x.joints.size(), y.joints.size());
+      for (std::size_t k = 0; k < x.joints.size(); ++k) {
+        EXPECT_EQ(x.joints[k].bvh, y.joints[k].bvh);
+        EXPECT_EQ(x.joints[k].joint, y.joints[k].joint);
+      }
+      ASSERT_EQ(x.sites.size(), y.sites.size());
+      for (std::size_t k = 0; k < x.sites.size(); ++k) {
+        EXPECT_EQ(x.sites[k].bvh, y.sites[k].bvh);
+        EXPECT_EQ(x.sites[k].segment, y.sites[k].segment);
+        EXPECT_EQ(x.sites[k].site, y.sites[k].site);
+      }
+      EXPECT_EQ(x.controller, y.controller);
+      EXPECT_EQ(x.kp, y.kp);
+      EXPECT_EQ(x.kd, y.kd);
+      EXPECT_EQ(x.settling_time, y.settling_time);
+      EXPECT_EQ(x.alpha, y.alpha);
+      EXPECT_EQ(x.beta, y.beta);
+      EXPECT_EQ(x.max_output, y.max_output);
+      EXPECT_EQ(x.stiffness, y.stiffness);
+      EXPECT_EQ(x.damping, y.damping);
+      EXPECT_EQ(x.max_force, y.max_force);
+    }
+    ASSERT_EQ(a.figures[f].impulses.size(), b.figures[f].impulses.size());
+    for (std::size_t k = 0; k < a.figures[f].impulses.size(); ++k) {
+      const ImpulseDef& x = a.figures[f].impulses[k];
+      const ImpulseDef& y = b.figures[f].impulses[k];
+      EXPECT_EQ(x.time, y.time);
+      EXPECT_EQ(x.segment, y.segment);
+      EXPECT_EQ(x.site, y.site);
+      EXPECT_EQ(x.linear, y.linear);
+      EXPECT_EQ(x.angular, y.angular);
+      EXPECT_EQ(x.frame, y.frame);
     }
   }
 }

@@ -87,6 +87,8 @@ long allocations_in_frames(const std::string& scene, int warm_up, int frames,
     g_counting = false;
     EXPECT_TRUE(r.ok) << r.message;
     total += g_allocations;
+    if (g_allocations)
+      std::printf("  frame %d: %ld\n", warm_up + f, static_cast<long>(g_allocations));
   }
   std::printf("%s: %ld heap allocations in %d frames after %d\n", scene.c_str(), total, frames,
               warm_up);
@@ -134,6 +136,17 @@ TEST(Allocations, WaistUnderMracStepsWithoutAllocating) {
 // frames 15-20, the ball's fall onto the floor after it.
 TEST(Allocations, ASwingIntoAJelloBallStepsWithoutAllocating) {
   EXPECT_EQ(allocations_in_frames("figure-and-jello", 2, 40), 0);
+}
+
+// An impulse event (frame 9, t = 0.3 s) and the fall with its impacts on the ground after it.
+TEST(Allocations, TheSoldiersShotAndFallStepWithoutAllocating) {
+  EXPECT_EQ(allocations_in_frames("soldier", 2, 40), 0);
+}
+
+// Site actuators (the marionette's strings) and servos of a motion-capture clip.
+TEST(Allocations, StringsAndMotionCaptureStepWithoutAllocating) {
+  EXPECT_EQ(allocations_in_frames("marionette", 2, 30), 0);
+  EXPECT_EQ(allocations_in_frames("mocap-wave", 2, 30), 0);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 
 #include "figure/figure_build.h"
 #include "figure_momentum.h"
+#include "figure_points.h"
 #include "scene/scene_json.h"
 #include "sim/figure_collisions.h"
 #include "sim/simulation.h"
@@ -55,13 +56,9 @@ Vec6 total_momentum(const Model& model, const State& state) {
 // The world velocity of a free sphere's centre (its frame's origin) and its centre.
 Vec3 centre_velocity(const Model& model, const State& state, int f) {
   const FigureModel& figure = model.figures[f].model;
-  FigureWorkspace ws;
-  size_figure_workspace(figure, ws);
-  figure_kinematics(figure, state.q.data() + figure.state_q_offset,
-                    state.v.data() + figure.state_v_offset, ws);
-  std::vector<SpatialTransform> world;
-  segment_world_transforms(figure, ws, world);
-  return segment_point_velocity(world[0], ws.v[0], world[0].r);
+  const test::FigurePose pose = test::pose_of(figure, state.q.data() + figure.state_q_offset,
+                                              state.v.data() + figure.state_v_offset);
+  return segment_point_velocity(pose.world[0], pose.ws.v[0], pose.world[0].r);
 }
 Vec3 centre(const Model& model, const State& state, int f) {
   return state.q.segment<3>(model.figures[f].model.state_q_offset);

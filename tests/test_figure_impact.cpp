@@ -10,6 +10,7 @@
 #include "figure/figure_impact.h"
 #include "figure/figure_kinematics.h"
 #include "figure_momentum.h"
+#include "figure_points.h"
 
 namespace pbm {
 namespace {
@@ -51,29 +52,9 @@ VecX state_q(const FigureModel& figure, const Vec3& position, Real bend) {
   return q;
 }
 
-// World velocity of a point attached to a segment, from the segments' spatial velocities.
-Vec3 point_velocity(const FigureModel& figure, const VecX& q, const VecX& v, int segment,
-                    const Vec3& point) {
-  FigureWorkspace ws;
-  size_figure_workspace(figure, ws);
-  figure_kinematics(figure, q.data(), v.data(), ws);
-  std::vector<SpatialTransform> world;
-  segment_world_transforms(figure, ws, world);
-  const MotionVector s = transform_motion(inverse(world[segment]), motion_from_vec6(ws.v[segment]));
-  return s.linear + s.angular.cross(point);
-}
-
-// World position of a point fixed in a segment at body coordinates p.
-Vec3 world_point(const FigureModel& figure, const VecX& q, int segment, const Vec3& p) {
-  FigureWorkspace ws;
-  size_figure_workspace(figure, ws);
-  figure_kinematics(figure, q.data(), nullptr, ws);
-  std::vector<SpatialTransform> world;
-  segment_world_transforms(figure, ws, world);
-  return world[segment].r + world[segment].E.transpose() * p;
-}
-
 using test::momentum;
+using test::point_velocity;
+using test::world_point;
 
 TEST(FigureImpact, ContactPointLeavesWithRestitutionTimesItsApproach) {
   const FigureModel figure = free_chain(3);

@@ -72,6 +72,44 @@ TEST(SceneFiguresJson, ControllersAreLaidOutInTheState) {
   EXPECT_EQ(f.n_control, 1 + kMracStateSize);
 }
 
+TEST(SceneFiguresJson, ImpulsesAreInTimeOrderAndSitesResolved) {
+  Scene s = parse_scene(full_scene().dump(), kFile);
+  const CompiledFigure f = build_figure_model(s.figures[0], kFile, "figures[0]");
+  ASSERT_EQ(f.impulses.size(), 2u);
+  EXPECT_EQ(f.impulses[0].time, 0.25);  // listed second
+  EXPECT_EQ(f.impulses[0].site.segment, 0);
+  EXPECT_EQ(f.impulses[0].site.position, Vec3::Zero());  // no site: the segment's origin
+  EXPECT_EQ(f.impulses[1].site.segment, 1);
+  EXPECT_EQ(f.impulses[1].site.position, Vec3(0, 0, 0.4));  // 'upper''s site 'elbow'
+  EXPECT_EQ(f.impulses[1].frame, ImpulseFrame::site);
+  ASSERT_EQ(f.site_actuators.size(), 3u);  // the scene's two, then the motion capture's marker
+  EXPECT_EQ(f.site_actuators[0].site.segment, 1);
+  EXPECT_EQ(f.site_actuators[0].site.position, Vec3(0, 0, 0.4));
+  EXPECT_EQ(f.site_actuators[1].site.segment, 0);
+  EXPECT_EQ(f.site_actuators[2].site.segment, 1);
+  EXPECT_EQ(f.site_actuators[2].def.stiffness, 250);
+  EXPECT_EQ(f.site_actuators[2].def.x.size(), 121u);
+  EXPECT_EQ(f.site_actuators[2].def.x[0].time, 0.25);  // the clip starts at 0.25 s
+  // Without controllers, one entry of state keeps the impulses' and the strings' work.
+  s.figures[0].controllers.clear();
+  EXPECT_EQ(build_figure_model(s.figures[0], kFile, "figures[0]").n_control, 1);
+  s.figures[0].impulses.clear();
+  s.figures[0].site_actuators.clear();
+  s.figures[0].mocap.reset();
+  EXPECT_EQ(build_figure_model(s.figures[0], kFile, "figures[0]").n_control, 0);
+}
+
+TEST(SceneFiguresJson, SavedElsewhereTheClipIsNamedFromTheNewFolder) {
+  Scene s = parse_scene(full_scene().dump(), "/data/scenes/walk.json");
+  s.figures[0].mocap->file = "clips/walk.bvh";
+  EXPECT_EQ(scene_saved_as(s, "/data/backup/walk.json").figures[0].mocap->file,
+            "../scenes/clips/walk.bvh");
+  EXPECT_EQ(scene_saved_as(s, "/data/scenes/copy.json").figures[0].mocap->file, "clips/walk.bvh");
+  EXPECT_EQ(scene_saved_as(s, "/data/backup/walk.json").file, "/data/backup/walk.json");
+  s.figures[0].mocap->file = "/clips/walk.bvh";  // absolute: as it is
+  EXPECT_EQ(scene_saved_as(s, "/tmp/walk.json").figures[0].mocap->file, "/clips/walk.bvh");
+}
+
 TEST(SceneFiguresJson, ASceneMayHoldOnlyFigures) {
   const Scene s = parse_scene(R"({"figures": [{"segments": [{}]}]})", kFile);
   EXPECT_TRUE(s.bodies.empty());
@@ -221,6 +259,53 @@ TEST(SceneFiguresJsonErrors, ErrorsNameTheirPath) {
   };
   for (const auto& [controller, path, message] : controllers) {
     expect_error(json{{"figures", {{{"segments", two}, {"controllers", {controller}}}}}}, path,
+                 message);
+  }
+  // Site actuators and impulses name a segment of the figure and one of its sites.
+  const json sited = {{{"name", "a"}, {"joint", joint}, {"sites", {{{"name", "tip"}}}}}};
+  const json path_keys = {{0, 1}};
+  const std::vector<std::tuple<json, std::string, std::string>> actuators = {
+      {{{"segment", "b"}, {"x", path_keys}, {"y", path_keys}, {"z", path_keys}},
+       "figures[0].site_actuators[0].segment",
+       "names no segment"},
+      {{{"segment", "a"}, {"site", "toe"}, {"x", path_keys}, {"y", path_keys}, {"z", path_keys}},
+       "figures[0].site_actuators[0].site",
+       "names no site of segment 'a'"},
+      {{{"segment", "a"}, {"x", path_keys}, {"y", path_keys}},
+       "figures[0].site_actuators[0].z",
+       "required"},
+      {{{"segment", "a"}, {"x", path_keys}, {"y", path_keys}, {"z", {{1, 0}, {1, 2}}}},
+       "figures[0].site_actuators[0].z[1]",
+       "must be greater than the previous"},
+      {{{"segment", "a"}, {"x", path_keys}, {"y", path_keys}, {"z", path_keys}, {"stiffness", 0}},
+       "figures[0].site_actuators[0].stiffness",
+       "must be > 0"},
+      {{{"segment", "a"}, {"x", path_keys}, {"y", path_keys}, {"z", path_keys}, {"max_force", 0}},
+       "figures[0].site_actuators[0].max_force",
+       "must be > 0"},
+  };
+  for (const auto& [actuator, path, message] : actuators) {
+    expect_error(json{{"figures", {{{"segments", sited}, {"site_actuators", {actuator}}}}}}, path,
+                 message);
+  }
+  const std::vector<std::tuple<json, std::string, std::string>> impulses = {
+      {{{"time", 1}, {"segment", "c"}, {"impulse", {1, 0, 0}}},
+       "figures[0].impulses[0].segment",
+       "names no segment"},
+      {{{"time", 1}, {"segment", "a"}, {"site", "toe"}, {"impulse", {1, 0, 0}}},
+       "figures[0].impulses[0].site",
+       "names no site"},
+      {{{"time", -1}, {"segment", "a"}, {"impulse", {1, 0, 0}}},
+       "figures[0].impulses[0].time",
+       "must be >= 0"},
+      {{{"segment", "a"}, {"impulse", {1, 0, 0}}}, "figures[0].impulses[0].time", "required"},
+      {{{"time", 1}, {"segment", "a"}}, "figures[0].impulses[0].impulse", "non-zero"},
+      {{{"time", 1}, {"segment", "a"}, {"impulse", {1, 0, 0}}, {"frame", "body"}},
+       "figures[0].impulses[0].frame",
+       "world"},
+  };
+  for (const auto& [impulse, path, message] : impulses) {
+    expect_error(json{{"figures", {{{"segments", sited}, {"impulses", {impulse}}}}}}, path,
                  message);
   }
   const json twice = {{"joint", "a"}, {"keys", {{0, 1}}}};

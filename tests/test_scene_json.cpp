@@ -67,7 +67,10 @@ TEST(SceneJson, SaveWritesAtomicallyAndLoadReadsItBack) {
   EXPECT_FALSE(std::filesystem::exists(path + ".tmp"));
   const Scene t = load_scene(path);
   EXPECT_EQ(t.file, path);
-  expect_same_scene(s, t);
+  // The same scene, its mesh's relative name now relative to the folder it was saved in.
+  expect_same_scene(scene_saved_as(s, path), t);
+  EXPECT_EQ(std::filesystem::weakly_canonical(dir / t.obstacles[2].file),
+            std::filesystem::weakly_canonical(std::filesystem::absolute(s.obstacles[2].file)));
   // Saving into a directory that does not exist fails cleanly, naming the file.
   const std::string bad = (dir / "no_such_dir" / "x.json").string();
   try {

@@ -180,6 +180,7 @@ namespace {
 struct Containment {
   const json& saved_root;
   const Scene& scene;  // the shipped file as the parser read it
+  std::string saved_file;
   std::vector<std::string> differences;
 
   void differ(const std::string& path, const json& given, const json& saved) {
@@ -219,6 +220,16 @@ struct Containment {
                path.ends_with("].target")) {
       const std::size_t track = std::stoul(path.substr(7));
       if (saved.get<std::string>() != scene.tracks.at(track).target) differ(path, given, saved);
+    } else if (given.is_string() && saved.is_string() && path.ends_with(".file")) {
+      // A file named relative to the scene is named relative to where it was saved.
+      namespace fs = std::filesystem;
+      const auto resolved = [](const std::string& scene_file, const std::string& name) {
+        return fs::weakly_canonical(fs::path(scene_file).parent_path() / name);
+      };
+      if (resolved(scene.file, given.get<std::string>()) !=
+          resolved(saved_file, saved.get<std::string>())) {
+        differ(path, given, saved);
+      }
     } else if (given != saved) {
       differ(path, given, saved);
     }
@@ -239,7 +250,7 @@ TEST(StudioDocument, EveryShippedSceneRoundTripsThroughSaveAndLoad) {
     save_scene(scene, copy.string());
     std::ifstream given_file(entry.path()), saved_file(copy);
     const json saved = json::parse(saved_file);
-    Containment containment{saved, scene, {}};
+    Containment containment{saved, scene, copy.string(), {}};
     containment.check(json::parse(given_file), saved, "");
     for (const std::string& difference : containment.differences) {
       ADD_FAILURE() << name << ": " << difference;

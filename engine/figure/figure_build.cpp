@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "core/quaternion.h"
 #include "figure/figure_controllers.h"
+#include "figure/mocap_retarget.h"
 
 namespace pbm {
 namespace {
@@ -250,8 +251,26 @@ CompiledFigure build_figure_model(const FigureDef& def, const std::string& file,
                       : "the initial position " + std::to_string(q) + " is outside [lower, upper]");
     }
   }
-  out.controllers = compile_figure_controllers(def, figure, file, path);
+  if (!def.mocap) {
+    out.controllers = compile_figure_controllers(def, figure, file, path);
+    out.site_actuators = compile_site_actuators(def, figure, file, path);
+  } else {
+    // The clip's servos and site actuators after the scene's own (retarget_mocap refuses what
+    // would clash with them, at the mocap's keys).
+    const MocapClip clip = load_figure_mocap(*def.mocap, file, path);
+    MocapTracks tracks = retarget_mocap(def, figure, clip, file, path);
+    FigureDef driven = def;
+    for (ControllerDef& c : tracks.controllers) driven.controllers.push_back(std::move(c));
+    for (SiteActuatorDef& a : tracks.site_actuators) driven.site_actuators.push_back(std::move(a));
+    out.controllers = compile_figure_controllers(driven, figure, file, path);
+    out.site_actuators = compile_site_actuators(driven, figure, file, path);
+  }
+  out.impulses = compile_impulses(def, figure, file, path);
   out.n_control = controller_state_size(out.controllers);
+  // Without controllers, the work entry alone when site actuators or impulses put energy in.
+  if (out.n_control == 0 && (!out.site_actuators.empty() || !out.impulses.empty())) {
+    out.n_control = 1;
+  }
   explicit_servo_limit(out);
   return out;
 }

@@ -9,8 +9,10 @@
 
 #include "control/joint_controller.h"
 #include "figure/figure_def.h"
+#include "figure/figure_impulse.h"
 #include "figure/figure_model.h"
 #include "figure/joint_limits.h"
+#include "figure/site_actuator.h"
 
 namespace pbm {
 
@@ -20,12 +22,14 @@ Mat3 shape_inertia(const SegmentShapeDef& shape, Real m);
 
 struct CompiledFigure {
   FigureModel model;
-  VecX q0, v0;                               // initial state, n_q and n_v
-  std::vector<JointController> controllers;  // sec. 15.4 (figure/figure_controllers.h)
+  VecX q0, v0;                                       // initial state, n_q and n_v
+  std::vector<JointController> controllers;          // sec. 15.4 (figure/figure_controllers.h)
+  std::vector<CompiledSiteActuator> site_actuators;  // sec. 15.4 (figure/site_actuator.h)
+  std::vector<CompiledImpulse> impulses;             // in time order (figure/figure_impulse.h)
   // The controllers' slice of State::q, first-order state integrated with the figure: the work
-  // the actuators have done [J] (the stability guard's account of the energy they put in),
-  // then kMracStateSize per MRAC (its reference model and integrals, sec. 15.4.2). Empty
-  // without controllers; placed by sim/model.cpp.
+  // the actuators and the impulses have done [J] (the stability guard's account of the energy
+  // they put in), then kMracStateSize per MRAC (its reference model and integrals, sec. 15.4.2).
+  // Empty without controllers, site actuators and impulses; placed by sim/model.cpp.
   int n_control = 0;
   int state_control_offset = 0;
   // The longest step the explicit PD servos stay stable at (infinite without any), the one that
@@ -40,6 +44,8 @@ struct CompiledFigure {
   // Its joints' limits (figure/joint_limits.h); their springs are sized by sim/model.cpp, which
   // knows the step.
   std::vector<JointLimit> limits;
+  // Whether it has actuators (controllers or site actuators) whose forces join its joints'.
+  bool actuated() const { return !controllers.empty() || !site_actuators.empty(); }
   bool collides(int a, int b) const { return self_pairs[a * model.size() + b] != 0; }
 };
 

@@ -3,10 +3,12 @@
 // the FigureModel the recursions run on.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "control/controller_def.h"
+#include "core/keyframes.h"
 #include "core/types.h"
 #include "figure/joint.h"
 
@@ -78,6 +80,69 @@ struct SegmentPairDef {
   std::string a, b;
 };
 
+// The axes an impulse's vectors are given in.
+enum class ImpulseFrame {
+  world,  // the inertial frame's
+  site,   // the site's, as it is at the impulse's time
+};
+
+// An impulse at a site at a time, a scene event (sec. 15.3: the wounded soldier of fig. 15.6
+// falls from "a large initial impulse on the chest"). The figure's velocities jump by
+// H dv = J^T P, its positions stay (figure/figure_impulse.h).
+struct ImpulseDef {
+  Real time = 0;        // [s], >= 0: applied in the substep whose interval holds it
+  std::string segment;  // the segment struck
+  std::string site;     // where on it: one of its sites; empty: its frame's origin (root site)
+  Vec3 linear = Vec3::Zero();   // the impulse [N s], at the site
+  Vec3 angular = Vec3::Zero();  // an impulsive couple [N m s]
+  ImpulseFrame frame = ImpulseFrame::world;
+};
+
+// A site trajectory (sec. 15.4): a site actuator pulls its site along a keyframed path in the
+// world, as a marionette's string pulls the puppet's hand, with the spring-damper
+// F = stiffness (p(t) - x) + damping (p-dot(t) - x-dot), capped at max_force, acting at the
+// site. Its work counts as the actuators' (the stability guard's input work).
+struct SiteActuatorDef {
+  std::string segment;  // the segment pulled
+  std::string site;     // one of its sites; empty: its frame's origin
+  Interpolation interpolation = Interpolation::smooth;
+  std::vector<Keyframe> x, y, z;  // the path's world coordinates p(t) [m], each with keys
+  Real stiffness = 1000;          // [N/m], > 0
+  Real damping = 50;              // [N s/m], >= 0
+  std::optional<Real> max_force;  // [N], > 0; none when absent
+};
+
+// Motion capture driving the figure (sec. 15.4's trajectories from recorded motion; issue:
+// "a BVH file drives joint trajectories mapped by joint name, or site trajectories from marker
+// positions; retargeting by a name map"). figure/mocap_retarget.h turns it into servos and site
+// actuators when the figure is compiled.
+struct MocapJointDef {
+  std::string bvh;    // the clip's joint
+  std::string joint;  // the segment whose parent joint (revolute or universal) follows it
+};
+struct MocapSiteDef {
+  std::string bvh;      // the clip's joint, whose position is the marker
+  std::string segment;  // the segment pulled
+  std::string site;     // one of its sites; empty: its frame's origin
+};
+struct MocapDef {
+  std::string file;   // BVH (or any skeleton animation assimp reads), relative to the scene file
+  Real scale = 0.01;  // the clip's length unit in m (BVH: usually cm)
+  Vec3 position = Vec3::Zero();         // where the clip's origin sits in the world [m]
+  Vec4 orientation = Vec4(1, 0, 0, 0);  // the clip's axes in the world's (w, x, y, z)
+  Real start = 0;                       // the scene time of the clip's first frame [s]
+  std::vector<MocapJointDef> joints;
+  std::vector<MocapSiteDef> sites;
+  // The servos of the mapped joints (as ControllerDef's) and the site actuators' springs (as
+  // SiteActuatorDef's).
+  ControllerKind controller = ControllerKind::stable_pd;
+  Real kp = 200, kd = 20;
+  Real settling_time = 0.3, alpha = 10, beta = 2;
+  std::optional<Real> max_output;
+  Real stiffness = 1000, damping = 50;
+  std::optional<Real> max_force;
+};
+
 struct FigureDef {
   std::string name;
   std::vector<SegmentDef> segments;
@@ -103,6 +168,10 @@ struct FigureDef {
   Real friction = 0.5;  // Coulomb's mu between segments, >= 0
   // Joint controllers (sec. 15.4), at most one per DOF.
   std::vector<ControllerDef> controllers;
+  // Impulse events (any order; applied in time order) and site actuators.
+  std::vector<ImpulseDef> impulses;
+  std::vector<SiteActuatorDef> site_actuators;
+  std::optional<MocapDef> mocap;
 };
 
 }  // namespace pbm

@@ -26,6 +26,41 @@ Vec3 contact_target(const Vec3& n, Real u_n_before, Real e) {
   return -e * u_n_before * n;
 }
 
+// x = A^+ b, the least-norm solution of the complete orthogonal decomposition `cod` of A, the
+// steps of Eigen's CompleteOrthogonalDecomposition::solve in the same order (so the same bits),
+// with its scratch in Vector: Eigen's own solve allocates a heap vector where A is rank
+// deficient (a box's corners on a floor), which the step must not (docs/architecture.md,
+// "Allocation"); an ImpactVector lives on the stack.
+template <class Cod, class Vector>
+void least_norm_solve(const Cod& cod, const Vector& b, Vector& x) {
+  const Eigen::Index rank = cod.rank(), cols = cod.cols();
+  x.resize(cols);
+  if (rank == 0) {
+    x.setZero();
+    return;
+  }
+  Vector c = b;  // Q^* b
+  c.applyOnTheLeft(cod.householderQ().setLength(rank).adjoint());
+  x.head(rank) = cod.matrixT()
+                     .topLeftCorner(rank, rank)
+                     .template triangularView<Eigen::Upper>()
+                     .solve(c.head(rank));
+  if (rank < cols) {
+    // y = Z^* [z; 0], Householder reflector by reflector.
+    x.tail(cols - rank).setZero();
+    Vector workspace(cols);
+    for (Eigen::Index k = 0; k < rank; ++k) {
+      if (k != rank - 1) std::swap(x(k), x(rank - 1));
+      x.segment(rank - 1, cols - rank + 1)
+          .applyHouseholderOnTheLeft(cod.matrixQTZ().row(k).tail(cols - rank).adjoint(),
+                                     cod.zCoeffs()(k), workspace.data());
+      if (k != rank - 1) std::swap(x(k), x(rank - 1));
+    }
+  }
+  c.head(cols) = x;
+  x = cod.colsPermutation() * c.head(cols);
+}
+
 }  // namespace
 
 void segment_world_transforms(const FigureModel& figure, const FigureWorkspace& ws,
@@ -84,13 +119,13 @@ bool solve_impulses(std::span<const ImpactContact> contacts, const ImpactSetting
       }
     }
     sys.cod.compute(sys.A);
-    sys.p_n = sys.cod.solve(sys.b);
+    least_norm_solve(sys.cod, sys.b, sys.p_n);
     p.setZero(3 * m);
     for (int c = 0; c < m; ++c) p.template segment<3>(3 * c) = sys.p_n[c] * contacts[c].normal;
   } else {
     sys.cod.compute(W);
-    sys.p_n = sys.target - u;  // the right-hand side, then the solution
-    p = sys.cod.solve(sys.p_n);
+    sys.p_n = sys.target - u;  // the right-hand side
+    least_norm_solve(sys.cod, sys.p_n, p);
   }
   // Feasible: every contact pushes, and (Coulomb) stays in its cone.
   const auto largest = [&] { return std::max<Real>(p.cwiseAbs().maxCoeff(), 1e-300); };

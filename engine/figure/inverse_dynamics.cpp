@@ -29,4 +29,16 @@ void inverse_dynamics(const FigureModel& figure, const Real* q, const Real* v, c
   }
 }
 
+void add_external_joint_forces(const FigureModel& figure, std::span<const ForceVector> f_ext,
+                               FigureWorkspace& ws, Real* tau) {
+  const int n = figure.size();
+  for (int i = 0; i < n; ++i) ws.f[i] = to_vec6(f_ext[i]);
+  for (int i = n - 1; i >= 0; --i) {
+    const SegmentModel& segment = figure.segments[i];
+    const int dof = static_cast<int>(ws.S[i].cols());
+    if (dof > 0) Eigen::Map<VecX>(tau + segment.v_offset, dof) += ws.S[i].transpose() * ws.f[i];
+    if (segment.parent >= 0) ws.f[segment.parent] += transform_to_parent(ws.X_up[i], ws.f[i]);
+  }
+}
+
 }  // namespace pbm

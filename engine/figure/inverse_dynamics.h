@@ -16,4 +16,10 @@ void inverse_dynamics(const FigureModel& figure, const Real* q, const Real* v, c
                       std::span<const ForceVector> f_ext, const Vec3& gravity, FigureWorkspace& ws,
                       Real* tau);
 
+// tau += J^T f: the joint forces that do on the joints what the external forces f_ext (one per
+// segment, in its own coordinates, as in forward_dynamics) do on the segments, by the inverse
+// pass alone. Needs figure_kinematics' X_up and S at the figure's q; overwrites ws.f.
+void add_external_joint_forces(const FigureModel& figure, std::span<const ForceVector> f_ext,
+                               FigureWorkspace& ws, Real* tau);
+
 }  // namespace pbm

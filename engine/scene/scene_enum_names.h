@@ -59,6 +59,8 @@ inline constexpr NameTable<SegmentShapeKind, 4> kSegmentShapeKindNames{
      {"sphere", SegmentShapeKind::sphere},
      {"cylinder", SegmentShapeKind::cylinder},
      {"capsule", SegmentShapeKind::capsule}}};
+inline constexpr NameTable<ImpulseFrame, 2> kImpulseFrameNames{
+    {{"world", ImpulseFrame::world}, {"site", ImpulseFrame::site}}};
 
 // The scene file's name of a kind ("" if the table lacks it): what messages, CSV columns and
 // labels print, so they use the words a scene file does.

@@ -211,7 +211,189 @@ constexpr auto kControllerFields = std::to_array<Field<ControllerDef>>({
                         "(sec. 15.4.2)."}),
 });
 
+// Far above any scene's events and strings; low enough that a figure's lists stay small.
+constexpr Real kMaxImpulses = 4096;
+constexpr Real kMaxSiteActuators = 256;
+
+constexpr auto kImpulseFields = std::to_array<Field<ImpulseDef>>({
+    value<&ImpulseDef::time>({.key = "time",
+                              .unit = "s",
+                              .range = kNonNegative,
+                              .required = true,
+                              .description = "When: applied at the start of the substep that "
+                                             "holds it."}),
+    value<&ImpulseDef::segment>({.key = "segment",
+                                 .required = true,
+                                 .non_empty = true,
+                                 .description = "The segment struck."}),
+    value<&ImpulseDef::site>({.key = "site",
+                              .default_note = "the segment's frame origin",
+                              .description = "Where: one of the segment's sites."}),
+    value<&ImpulseDef::linear>(
+        {.key = "impulse", .unit = "N s", .description = "The impulse at the site."}),
+    value<&ImpulseDef::angular>(
+        {.key = "angular", .unit = "N m s", .description = "An impulsive couple on the segment."}),
+    choice<&ImpulseDef::frame, kImpulseFrameNames>(
+        {.key = "frame",
+         .description = "The axes of impulse and angular: the world's or the site's at that "
+                        "time."}),
+});
+
+constexpr auto kSiteActuatorFields = std::to_array<Field<SiteActuatorDef>>({
+    value<&SiteActuatorDef::segment>({.key = "segment",
+                                      .required = true,
+                                      .non_empty = true,
+                                      .description = "The segment pulled."}),
+    value<&SiteActuatorDef::site>({.key = "site",
+                                   .default_note = "the segment's frame origin",
+                                   .description = "The site pulled: one of the segment's."}),
+    choice<&SiteActuatorDef::interpolation, kInterpolationNames>(
+        {.key = "interpolation",
+         .description = "Of the path between keys; its derivative gives the desired velocity."}),
+    keyframes<&SiteActuatorDef::x>({.key = "x",
+                                    .unit = "m",
+                                    .limit = kMaxTrajectoryKeys,
+                                    .required = true,
+                                    .description = "The path's world x: [time s, value] pairs."}),
+    keyframes<&SiteActuatorDef::y>({.key = "y",
+                                    .unit = "m",
+                                    .limit = kMaxTrajectoryKeys,
+                                    .required = true,
+                                    .description = "The path's world y."}),
+    keyframes<&SiteActuatorDef::z>({.key = "z",
+                                    .unit = "m",
+                                    .limit = kMaxTrajectoryKeys,
+                                    .required = true,
+                                    .description = "The path's world z."}),
+    value<&SiteActuatorDef::stiffness>({.key = "stiffness",
+                                        .unit = "N/m",
+                                        .range = kPositive,
+                                        .description = "The string's spring toward the path."}),
+    value<&SiteActuatorDef::damping>({.key = "damping",
+                                      .unit = "N s/m",
+                                      .range = kNonNegative,
+                                      .description = "Its damper on the velocity relative to "
+                                                     "the path's."}),
+    value<&SiteActuatorDef::max_force>({.key = "max_force",
+                                        .unit = "N",
+                                        .range = kPositive,
+                                        .default_note = "unlimited",
+                                        .description = "The actuator's limit |F|."}),
+});
+
+constexpr auto kMocapJointFields = std::to_array<Field<MocapJointDef>>({
+    value<&MocapJointDef::bvh>(
+        {.key = "bvh", .required = true, .non_empty = true, .description = "The clip's joint."}),
+    value<&MocapJointDef::joint>({.key = "joint",
+                                  .required = true,
+                                  .non_empty = true,
+                                  .description = "The segment whose parent joint (revolute or "
+                                                 "universal) takes its angles."}),
+});
+
+constexpr auto kMocapSiteFields = std::to_array<Field<MocapSiteDef>>({
+    value<&MocapSiteDef::bvh>({.key = "bvh",
+                               .required = true,
+                               .non_empty = true,
+                               .description = "The clip's joint whose position is the marker."}),
+    value<&MocapSiteDef::segment>({.key = "segment",
+                                   .required = true,
+                                   .non_empty = true,
+                                   .description = "The segment pulled."}),
+    value<&MocapSiteDef::site>({.key = "site",
+                                .default_note = "the segment's frame origin",
+                                .description = "The site pulled: one of the segment's."}),
+});
+
 }  // namespace
+
+constexpr Section<MocapJointDef> kMocapJointSection{
+    .name = "mocap_joint", .noun = "mocap joint", .fields = kMocapJointFields};
+constexpr Section<MocapSiteDef> kMocapSiteSection{
+    .name = "mocap_site", .noun = "mocap site", .fields = kMocapSiteFields};
+
+namespace {
+
+// A clip may map every joint of the largest figure.
+constexpr Real kMaxMocapMaps = kMaxSegments;
+
+constexpr auto kMocapFields = std::to_array<Field<MocapDef>>({
+    value<&MocapDef::file>({.key = "file",
+                            .required = true,
+                            .non_empty = true,
+                            .description = "A BVH file (or any skeleton animation assimp reads), "
+                                           "relative to the scene file."}),
+    value<&MocapDef::scale>({.key = "scale",
+                             .unit = "m",
+                             .range = kPositive,
+                             .description = "The clip's length unit (BVH: usually cm)."}),
+    value<&MocapDef::position>(
+        {.key = "position", .unit = "m", .description = "Where the clip's origin sits."}),
+    unit_vector<&MocapDef::orientation>(
+        {.key = "orientation",
+         .description = "The clip's axes in the world's, a quaternion (w, x, y, z); a Y-up "
+                        "clip stands up with [0.7071, 0.7071, 0, 0]."}),
+    value<&MocapDef::start>({.key = "start",
+                             .unit = "s",
+                             .range = kNonNegative,
+                             .description = "The scene time of the clip's first frame."}),
+    list<&MocapDef::joints, kMocapJointSection>(
+        {.key = "joints",
+         .limit = kMaxMocapMaps,
+         .section = "mocap_joint",
+         .description = "Clip joints whose angles the figure's joints follow, by servos."}),
+    list<&MocapDef::sites, kMocapSiteSection>(
+        {.key = "sites",
+         .limit = kMaxMocapMaps,
+         .section = "mocap_site",
+         .description = "Clip joints whose positions the figure's sites follow, by site "
+                        "actuators."}),
+    choice<&MocapDef::controller, kControllerKindNames>(
+        {.key = "controller", .description = "The law of the joints' servos."}),
+    value<&MocapDef::kp>({.key = "kp",
+                          .unit = "N m/rad",
+                          .range = kNonNegative,
+                          .description = "pd, stable_pd: the servos' stiffness."}),
+    value<&MocapDef::kd>({.key = "kd",
+                          .unit = "N m s/rad",
+                          .range = kNonNegative,
+                          .description = "pd, stable_pd: their damping."}),
+    value<&MocapDef::settling_time>({.key = "settling_time",
+                                     .unit = "s",
+                                     .range = kPositive,
+                                     .description = "mrac: t_s of the reference model."}),
+    value<&MocapDef::alpha>(
+        {.key = "alpha", .range = kNonNegative, .description = "mrac: integral adaptation gain."}),
+    value<&MocapDef::beta>({.key = "beta",
+                            .range = kNonNegative,
+                            .description = "mrac: proportional adaptation gain."}),
+    value<&MocapDef::max_output>({.key = "max_output",
+                                  .unit = "N m",
+                                  .range = kPositive,
+                                  .default_note = "unlimited",
+                                  .description = "The servos' limit |u|."}),
+    value<&MocapDef::stiffness>({.key = "stiffness",
+                                 .unit = "N/m",
+                                 .range = kPositive,
+                                 .description = "The site actuators' spring."}),
+    value<&MocapDef::damping>(
+        {.key = "damping", .unit = "N s/m", .range = kNonNegative, .description = "Their damper."}),
+    value<&MocapDef::max_force>({.key = "max_force",
+                                 .unit = "N",
+                                 .range = kPositive,
+                                 .default_note = "unlimited",
+                                 .description = "Their limit |F|."}),
+});
+
+}  // namespace
+
+constexpr Section<MocapDef> kMocapSection{.name = "mocap", .noun = "mocap", .fields = kMocapFields};
+
+constexpr Section<ImpulseDef> kImpulseSection{
+    .name = "impulse", .noun = "impulse", .fields = kImpulseFields};
+
+constexpr Section<SiteActuatorDef> kSiteActuatorSection{
+    .name = "site_actuator", .noun = "site actuator", .fields = kSiteActuatorFields};
 
 constexpr Section<ControllerDef> kControllerSection{
     .name = "controller",
@@ -353,6 +535,22 @@ constexpr auto kFigureFields = std::to_array<Field<FigureDef>>({
          .section = "controller",
          .description = "Joint controllers following trajectories (sec. 15.4), one per DOF at "
                         "most."}),
+    list<&FigureDef::site_actuators, kSiteActuatorSection>(
+        {.key = "site_actuators",
+         .limit = kMaxSiteActuators,
+         .section = "site_actuator",
+         .description = "Site trajectories (sec. 15.4): springs pulling sites along paths, "
+                        "like marionette strings."}),
+    list<&FigureDef::impulses, kImpulseSection>(
+        {.key = "impulses",
+         .limit = kMaxImpulses,
+         .section = "impulse",
+         .description = "Impulses at sites at given times (sec. 15.3, fig. 15.6)."}),
+    object<&FigureDef::mocap, kMocapSection>(
+        {.key = "mocap",
+         .section = "mocap",
+         .default_note = "none",
+         .description = "Motion capture driving joints and sites, by a name map."}),
 });
 
 // The whole figure compiled as soon as it is read: its tree, masses, inertias, axes and initial

@@ -15,7 +15,10 @@ std::vector<SectionDescription> describe_scene_format() {
           describe_section(kTrackSection),        describe_section(kFigureSection),
           describe_section(kSegmentSection),      describe_section(kJointSection),
           describe_section(kSegmentShapeSection), describe_section(kSiteSection),
-          describe_section(kControllerSection),   describe_section(kSegmentPairSection)};
+          describe_section(kControllerSection),   describe_section(kSegmentPairSection),
+          describe_section(kImpulseSection),      describe_section(kSiteActuatorSection),
+          describe_section(kMocapSection),        describe_section(kMocapJointSection),
+          describe_section(kMocapSiteSection)};
 }
 
 const SectionDescription* find_section(const std::vector<SectionDescription>& sections,

@@ -122,8 +122,34 @@ std::string scene_to_json(const Scene& scene) {
   return write_section(kSceneSection, scene).dump(2) + "\n";
 }
 
+namespace {
+
+// A file the scene names relative to its own folder (a mesh, a motion capture), named again
+// relative to `to`'s folder, so that a scene saved elsewhere (save as, the studio's autosave)
+// still finds it. Absolute names, and every name of a scene read from text, stay as they are.
+void rebase(std::string& name, const std::string& from, const std::string& to) {
+  namespace fs = std::filesystem;
+  if (name.empty() || from.empty() || fs::path(name).is_absolute()) return;
+  const fs::path target = fs::absolute(fs::path(from).parent_path() / name).lexically_normal();
+  const fs::path folder = fs::absolute(fs::path(to)).parent_path().lexically_normal();
+  const fs::path relative = target.lexically_relative(folder);
+  name = relative.empty() ? target.string() : relative.string();
+}
+
+}  // namespace
+
+Scene scene_saved_as(const Scene& scene, const std::string& path) {
+  Scene out = scene;
+  for (ObstacleDef& o : out.obstacles) rebase(o.file, scene.file, path);
+  for (FigureDef& f : out.figures) {
+    if (f.mocap) rebase(f.mocap->file, scene.file, path);
+  }
+  out.file = path;
+  return out;
+}
+
 void save_scene(const Scene& scene, const std::string& path) {
-  const std::string text = scene_to_json(scene);
+  const std::string text = scene_to_json(scene_saved_as(scene, path));
   const std::string temporary = path + ".tmp";
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);

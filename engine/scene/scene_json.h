@@ -29,8 +29,13 @@ Scene parse_scene(const std::string& json_text, const std::string& file_for_mess
 // round-trip precision).
 std::string scene_to_json(const Scene& scene);
 
-// Writes scene_to_json(scene) to path + ".tmp", then renames it over `path`, so a crash or a full
-// disk never leaves a half-written scene file. Throws pbm::Error(path, "", ...) on failure.
+// The scene as a file at `path` holds it: the files it names relative to its own folder (a mesh
+// obstacle's, a motion capture's) named relative to `path`'s folder instead, and `file` = path.
+Scene scene_saved_as(const Scene& scene, const std::string& path);
+
+// Writes scene_to_json(scene_saved_as(scene, path)) to path + ".tmp", then renames it over
+// `path`, so a crash or a full disk never leaves a half-written scene file. Throws
+// pbm::Error(path, "", ...) on failure.
 void save_scene(const Scene& scene, const std::string& path);
 
 }  // namespace pbm

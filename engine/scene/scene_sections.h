@@ -29,6 +29,11 @@ extern const Section<SegmentShapeDef> kSegmentShapeSection;    // scene_figures_
 extern const Section<SiteDef> kSiteSection;                    // scene_figures_json.cpp
 extern const Section<ControllerDef> kControllerSection;        // scene_figures_json.cpp
 extern const Section<SegmentPairDef> kSegmentPairSection;      // scene_figures_json.cpp
+extern const Section<ImpulseDef> kImpulseSection;              // scene_figures_json.cpp
+extern const Section<SiteActuatorDef> kSiteActuatorSection;    // scene_figures_json.cpp
+extern const Section<MocapDef> kMocapSection;                  // scene_figures_json.cpp
+extern const Section<MocapJointDef> kMocapJointSection;        // scene_figures_json.cpp
+extern const Section<MocapSiteDef> kMocapSiteSection;          // scene_figures_json.cpp
 
 // Whether an obstacle of `kind` has the key (its point is "point", "center" or "position").
 bool obstacle_has_key(ObstacleKind kind, std::string_view key);

@@ -10,6 +10,7 @@
 #include "collide/body_collisions.h"
 #include "control/joint_controller.h"
 #include "core/types.h"
+#include "figure/site_actuator.h"
 #include "sim/segment_body_collisions.h"
 #include "sim/step_stage.h"
 
@@ -29,6 +30,8 @@ struct FigureFrameStats {
   int contacts = 0;                 // contact points touching an obstacle
   // Each controller of CompiledFigure::controllers at the measured state (figs. 15.7, 15.8).
   std::vector<ControlSample> controllers;
+  // Each site actuator of CompiledFigure::site_actuators at the measured state.
+  std::vector<SitePull> site_actuators;
 };
 
 // Levels of detail chosen automatically (sim/level_of_detail.h) at the frame's start.

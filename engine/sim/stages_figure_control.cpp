@@ -4,6 +4,10 @@
 #include <cmath>
 #include <limits>
 
+#include "figure/figure_impact.h"
+#include "figure/figure_impulse.h"
+#include "figure/figure_kinematics.h"
+#include "figure/inverse_dynamics.h"
 #include "figure/stable_pd.h"
 
 namespace pbm::stages {
@@ -16,9 +20,9 @@ Real limit_of(const JointController& c) {
 
 }  // namespace
 
-bool figure_controllers_present(const Model& model) {
+bool figure_step_start_present(const Model& model) {
   for (const CompiledFigure& figure : model.figures) {
-    if (!figure.controllers.empty()) return true;
+    if (figure.actuated() || !figure.impulses.empty()) return true;
   }
   return false;
 }
@@ -34,9 +38,17 @@ void size_figure_controllers(const Model& model, Workspace& ws) {
   FiguresWorkspace& fw = *ws.figures;
   fw.control.resize(model.figures.size());
   fw.step = model.substep;
+  int n_v = 0, segments = 0;
+  for (const CompiledFigure& figure : model.figures) {
+    if (figure.site_actuators.empty() && figure.impulses.empty()) continue;
+    n_v = std::max(n_v, figure.model.n_v);
+    segments = std::max(segments, figure.model.size());
+  }
+  fw.site_forces.assign(static_cast<std::size_t>(segments), ForceVector{});
+  size_impulse_scratch(n_v, segments, fw.impulse);
   for (std::size_t f = 0; f < model.figures.size(); ++f) {
     const CompiledFigure& figure = model.figures[f];
-    if (figure.controllers.empty()) continue;
+    if (!figure.actuated()) continue;
     const int n = figure.model.n_v;
     FigureControlWorkspace& w = fw.control[f];
     for (VecX* x : {&w.tau, &w.Kp, &w.Kd, &w.q_target, &w.v_target, &w.tau_ext, &w.qdd, &w.tau_pd})
@@ -52,14 +64,31 @@ void size_figure_controllers(const Model& model, Workspace& ws) {
 }
 
 void figure_step_start(const SubstepContext& c) {
-  c.ws.figures->step = c.dt;
+  FiguresWorkspace& fw = *c.ws.figures;
+  fw.step = c.dt;
+  // The impulse events not yet applied whose time falls before the substep's end, at its start:
+  // each once (State::impulses_applied), at most one substep early. A retried frame restarts
+  // from its start state, count included, and applies them again.
+  const Real t1 = c.state.time + c.dt;
+  for (std::size_t f = 0; f < c.model.figures.size(); ++f) {
+    const CompiledFigure& figure = c.model.figures[f];
+    int& applied = c.state.impulses_applied[f];
+    for (; applied < static_cast<int>(figure.impulses.size()); ++applied) {
+      const CompiledImpulse& impulse = figure.impulses[applied];
+      if (impulse.time >= t1) break;
+      const Real work = apply_impulse(figure.model, c.state.q.data() + figure.model.state_q_offset,
+                                      c.state.v.data() + figure.model.state_v_offset, impulse,
+                                      fw.impulse, fw.each[f]);
+      c.state.q[figure.state_control_offset] += work;  // input work for the guard
+    }
+  }
 }
 
 void figure_controllers(const RateContext& c) {
   FiguresWorkspace& fw = *c.ws.figures;
   for (std::size_t f = 0; f < c.model.figures.size(); ++f) {
     const CompiledFigure& figure = c.model.figures[f];
-    if (figure.controllers.empty()) continue;
+    if (!figure.actuated()) continue;
     FigureControlWorkspace& w = fw.control[f];
     w.tau.setZero();
     const Real* q = c.q.data() + figure.model.state_q_offset;
@@ -72,7 +101,27 @@ void figure_controllers(const RateContext& c) {
       w.tau[ctrl.v_index] +=
           explicit_control(ctrl, c.t, q[ctrl.q_index], v[ctrl.v_index], state + s, rate + s).output;
     }
+    if (!figure.site_actuators.empty()) add_site_actuator_forces(c, f);
   }
+}
+
+void add_site_actuator_forces(const RateContext& c, std::size_t f) {
+  FiguresWorkspace& fw = *c.ws.figures;
+  const CompiledFigure& figure = c.model.figures[f];
+  const FigureModel& model = figure.model;
+  FigureWorkspace& each = fw.each[f];
+  figure_kinematics(model, c.q.data() + model.state_q_offset, c.v.data() + model.state_v_offset,
+                    each);
+  segment_world_transforms(model, each, fw.world);
+  const std::span<ForceVector> forces(fw.site_forces.data(),
+                                      static_cast<std::size_t>(model.size()));
+  for (ForceVector& force : forces) force = ForceVector{};
+  for (const CompiledSiteActuator& a : figure.site_actuators) {
+    const int i = a.site.segment;
+    const SitePull pull = site_pull(a, c.t, fw.world[i], each.v[i]);
+    forces[i] += site_pull_force(a, fw.world[i], pull);
+  }
+  add_external_joint_forces(model, forces, each, fw.control[f].tau.data());
 }
 
 void stable_pd_dynamics(const RateContext& c, std::size_t f,
@@ -121,7 +170,7 @@ void stable_pd_dynamics(const RateContext& c, std::size_t f,
 
 void actuator_work_rate(const RateContext& c, std::size_t f) {
   const CompiledFigure& figure = c.model.figures[f];
-  if (figure.controllers.empty()) return;
+  if (!figure.actuated()) return;
   const FigureModel& model = figure.model;
   const FiguresWorkspace& fw = *c.ws.figures;
   const auto v = c.v.segment(model.state_v_offset, model.n_v);
@@ -141,14 +190,10 @@ void actuator_work_rate(const RateContext& c, std::size_t f) {
 void measure_figure_controllers(const CompiledFigure& figure, const State& state,
                                 FigureFrameStats& out) {
   out.controllers.resize(figure.controllers.size());
-  if (figure.controllers.empty()) {
-    out.work = 0;
-    return;
-  }
+  const Real* control = state.q.data() + figure.state_control_offset;
+  out.work = figure.n_control > 0 ? control[0] : 0;
   const Real* q = state.q.data() + figure.model.state_q_offset;
   const Real* v = state.v.data() + figure.model.state_v_offset;
-  const Real* control = state.q.data() + figure.state_control_offset;
-  out.work = control[0];
   for (std::size_t k = 0; k < figure.controllers.size(); ++k) {
     const JointController& c = figure.controllers[k];
     const Real qi = q[c.q_index], vi = v[c.v_index];

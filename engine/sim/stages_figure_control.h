@@ -1,8 +1,10 @@
-// The figures' joint controllers in the step (sec. 15.4, control/): MRAC and PD servos in the
-// controllers stage, their outputs joining the figure's joint forces; stable PD servos inside the
-// dynamics stage, whose solve they change (figure/stable_pd.h); the rates of the controllers'
-// state (MRAC's reference model and integrals, the actuators' work) and what a frame reports of
-// them. Parts of the figures' row of the subsystem table (sim/subsystems.cpp).
+// The figures' joint controllers, site actuators and impulse events in the step (secs. 15.3,
+// 15.4, control/): MRAC and PD servos and the site actuators in the controllers stage, their
+// outputs joining the figure's joint forces; stable PD servos inside the dynamics stage, whose
+// solve they change (figure/stable_pd.h); impulse events at the start of the substep that holds
+// them; the rates of the controllers' state (MRAC's reference model and integrals, the
+// actuators' work) and what a frame reports of them. Parts of the figures' row of the subsystem
+// table (sim/subsystems.cpp).
 #pragma once
 
 #include <span>
@@ -11,10 +13,19 @@
 
 namespace pbm::stages {
 
-bool figure_controllers_present(const Model& model);
+// Whether any figure has actuators or impulse events (the step_start hook's presence).
+bool figure_step_start_present(const Model& model);
 void size_figure_controllers(const Model& model, Workspace& ws);
-void figure_step_start(const SubstepContext& c);  // step_start: the stable PD's step length
-void figure_controllers(const RateContext& c);    // controllers: MRAC and PD outputs, MRAC rates
+// step_start: the stable PD's and the work rate's step length; the impulse events that fall in
+// the substep, applied to the state at its start (figure/figure_impulse.h), their work added to
+// the actuators'.
+void figure_step_start(const SubstepContext& c);
+// controllers: MRAC and PD outputs, MRAC rates, the site actuators' joint forces.
+void figure_controllers(const RateContext& c);
+
+// Figure f's site actuators (figure/site_actuator.h) at the rate's (t, q, v): their J^T F added
+// to its actuators' forces.
+void add_site_actuator_forces(const RateContext& c, std::size_t f);
 
 // Figure f's accelerations (its slice of c.v_dot) under its stable PD servos, with the joint
 // forces ws.figures->tau (damping and the explicit controllers) and the external forces on its

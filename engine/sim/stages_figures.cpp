@@ -229,6 +229,40 @@ void add_joint_overlays(const FigureModel& figure, const FigureDef& def,
   if (!dots.positions.empty()) snap.points.push_back(std::move(dots));
 }
 
+// The site actuators' strings, from each site to where its path is at t (the marionette's
+// strings), and for a quarter second after each impulse event a red stroke ending at the site
+// it struck, along the impulse.
+void add_event_drawables(const CompiledFigure& figure, Real t,
+                         const std::vector<SpatialTransform>& world, draw::Snapshot& snap) {
+  if (!figure.site_actuators.empty()) {
+    draw::Lines strings{.end_points = true, .end_point_size = 4, .layer = draw::Layer::scene};
+    for (const CompiledSiteActuator& a : figure.site_actuators) {
+      const SitePull pull = site_pull(a, t, world[a.site.segment], Vec6::Zero());
+      strings.points.push_back(pull.position.cast<float>());
+      strings.points.push_back(pull.target.cast<float>());
+      strings.colors.push_back({0.85f, 0.85f, 0.8f});
+    }
+    snap.lines.push_back(std::move(strings));
+  }
+  constexpr Real kShown = 0.25;  // [s]
+  constexpr Real kLength = 0.4;  // [m]
+  draw::Lines strokes{.layer = draw::Layer::overlay};
+  for (const CompiledImpulse& impulse : figure.impulses) {
+    if (t < impulse.time || t > impulse.time + kShown) continue;
+    const SpatialTransform& X = world[impulse.site.segment];
+    const Vec3 at = X.r + X.E.transpose() * impulse.site.position;
+    Vec3 along = impulse.frame == ImpulseFrame::world
+                     ? impulse.linear
+                     : Vec3(X.E.transpose() * impulse.site.rotation * impulse.linear);
+    if (!(along.norm() > 0)) continue;  // a couple alone has no line of action
+    along.normalize();
+    strokes.points.push_back((at - kLength * along).cast<float>());
+    strokes.points.push_back(at.cast<float>());
+    strokes.colors.push_back({0.95f, 0.15f, 0.1f});
+  }
+  if (!strokes.points.empty()) snap.lines.push_back(std::move(strokes));
+}
+
 }  // namespace
 
 bool figures_present(const Model& model) {
@@ -392,7 +426,7 @@ void figure_dynamics(const RateContext& c) {
     add_joint_limit_forces(compiled.limits, q_of(figure, c.q), v,
                            c.model.scene.figures[f].impact_speed, fw.tau.data());
     // The explicit controllers' forces (the controllers stage ran before).
-    if (!compiled.controllers.empty()) fw.tau.head(figure.n_v) += fw.control[f].tau;
+    if (compiled.actuated()) fw.tau.head(figure.n_v) += fw.control[f].tau;
     // Gravity as the base's acceleration, at its value of the moment (tracks may drive it); the
     // contact stage's forces when obstacles are present (figure_contact_forces ran before).
     const std::span<const ForceVector> external =
@@ -447,6 +481,12 @@ void measure_figures(const Model& model, const State& state, Workspace& ws, Fram
                   joint_limit_energy(model.figures[f].limits, q_of(figure, state.q));
     out.contacts = 0;
     measure_figure_controllers(model.figures[f], state, out);
+    out.site_actuators.resize(model.figures[f].site_actuators.size());
+    for (std::size_t k = 0; k < out.site_actuators.size(); ++k) {
+      const CompiledSiteActuator& a = model.figures[f].site_actuators[k];
+      out.site_actuators[k] =
+          site_pull(a, state.time, fw.world[a.site.segment], w.v[a.site.segment]);
+    }
     if (!figure_contacts_present(model)) continue;
     const FigureDef& def = model.scene.figures[f];
     for_each_contact(figure, def, w, fw.world, ws.drive.obstacles,
@@ -513,6 +553,7 @@ void add_figure_drawables(const Model& model, const Inputs& inputs, const State&
       snap.focus.add(p.center + draw::Vec3f::Constant(reach));
     }
     add_joint_overlays(figure, def, fw.world, snap);
+    add_event_drawables(model.figures[f], state.time, fw.world, snap);
   }
 }
 

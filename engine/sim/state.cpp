@@ -10,6 +10,7 @@ State initial_state(const Model& model) {
   st.q.setZero(model.n_q);
   st.v.setZero(model.n_v);
   st.dormant.assign(model.bodies.size(), 0);
+  st.impulses_applied.assign(model.figures.size(), 0);
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     const BodyModel& body = model.bodies[b];
     const BodyDef& def = model.scene.bodies[b];
@@ -56,6 +57,7 @@ std::uint64_t hash_state(const State& state) {
   mix(&state.energy_surplus, sizeof state.energy_surplus);
   mix(&state.energy_scale, sizeof state.energy_scale);
   mix(state.dormant.data(), state.dormant.size());
+  mix(state.impulses_applied.data(), sizeof(int) * state.impulses_applied.size());
   return h;
 }
 

@@ -36,6 +36,11 @@ struct State {
   // Per body: 1 while a body of level "auto" runs without its displacements (q_d = d-dot = 0;
   // sim/level_of_detail.h), decided at a frame's start; 0 for every other body.
   std::vector<std::uint8_t> dormant;
+  // Per figure: how many of its impulse events (CompiledFigure::impulses, in time order) have
+  // been applied. A count rather than a test of the event's time against the substep's interval:
+  // a frame's end is snapped to its exact time, so consecutive intervals may overlap by a
+  // rounding error, and an event there would be applied twice.
+  std::vector<int> impulses_applied;
 };
 
 State initial_state(const Model& model);

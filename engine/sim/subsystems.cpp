@@ -64,7 +64,7 @@ constexpr Subsystem kTable[] = {
                 {S::dynamics, stages::figure_dynamics},
                 {S::kinematics, stages::figure_kinematics}}},
      .kinematic_rates = stages::figure_kinematic_rates,
-     .substep = {{{S::step_start, stages::figure_step_start, stages::figure_controllers_present},
+     .substep = {{{S::step_start, stages::figure_step_start, stages::figure_step_start_present},
                   {S::renormalize, stages::figure_renormalize},
                   {S::impacts, stages::figure_impacts, stages::figure_impacts_present}}},
      .measure = stages::measure_figures,

@@ -12,6 +12,7 @@
 #include "constrain/constraint_projection.h"
 #include "deform/body_workspace.h"
 #include "figure/figure_impact.h"
+#include "figure/figure_impulse.h"
 #include "figure/figure_workspace.h"
 #include "figure/stable_pd.h"
 #include "integrate/integrators.h"
@@ -31,9 +32,9 @@ struct BodyReach {
   Real travel = 0;  // how far a point of it may move in the lookahead [m]
 };
 
-// One figure's controllers (sim/stages_figure_control.h), each vector n_v: the actuators' forces
-// of this evaluation (MRAC and PD first, then the stable PD's), and the stable PD's gains, targets,
-// other joint forces, accelerations and servo forces.
+// One figure's actuators (sim/stages_figure_control.h), each vector n_v: the actuators' forces
+// of this evaluation (MRAC and PD, the site actuators' J^T F, then the stable PD's), and the
+// stable PD's gains, targets, other joint forces, accelerations and servo forces.
 struct FigureControlWorkspace {
   VecX tau;
   VecX Kp, Kd, q_target, v_target, tau_ext, qdd, tau_pd;
@@ -61,6 +62,10 @@ struct FiguresWorkspace {
   std::vector<SegmentContact> segment_contacts;
   // Collisions of segments with deformable bodies (sim/segment_body_collisions.h).
   SegmentBodyWorkspace bodies;
+  // The site actuators' forces on each segment of the figure being evaluated (own frames), and the
+  // impulse events' scratch.
+  std::vector<ForceVector> site_forces;
+  ImpulseScratch impulse;
 };
 
 struct Workspace {

@@ -1,0 +1,81 @@
+#include "figure/site_actuator.h"
+
+#include <cmath>
+
+#include "core/error.h"
+
+namespace pbm {
+
+namespace {
+
+void check_keys(const std::vector<Keyframe>& keys, const std::string& file, const std::string& at) {
+  if (keys.empty()) throw Error(file, at, "needs at least one [time, value] key");
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    if (!std::isfinite(keys[k].time) || !std::isfinite(keys[k].value)) {
+      throw Error(file, at + "[" + std::to_string(k) + "]", "must be finite");
+    }
+    if (k > 0 && !(keys[k].time > keys[k - 1].time)) {
+      throw Error(file, at + "[" + std::to_string(k) + "]", "times must increase strictly");
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<CompiledSiteActuator> compile_site_actuators(const FigureDef& def,
+                                                         const FigureModel& figure,
+                                                         const std::string& file,
+                                                         const std::string& path) {
+  std::vector<CompiledSiteActuator> out;
+  out.reserve(def.site_actuators.size());
+  for (std::size_t k = 0; k < def.site_actuators.size(); ++k) {
+    const SiteActuatorDef& d = def.site_actuators[k];
+    const std::string at = path + ".site_actuators[" + std::to_string(k) + "]";
+    check_keys(d.x, file, at + ".x");
+    check_keys(d.y, file, at + ".y");
+    check_keys(d.z, file, at + ".z");
+    if (!(d.stiffness > 0) || !std::isfinite(d.stiffness)) {
+      throw Error(file, at + ".stiffness", "must be > 0 and finite");
+    }
+    if (!(d.damping >= 0) || !std::isfinite(d.damping)) {
+      throw Error(file, at + ".damping", "must be >= 0 and finite");
+    }
+    if (d.max_force && (!(*d.max_force > 0) || !std::isfinite(*d.max_force))) {
+      throw Error(file, at + ".max_force", "must be > 0 and finite");
+    }
+    out.push_back({find_site(def, figure, d.segment, d.site, file, at), d});
+  }
+  return out;
+}
+
+SitePull site_pull(const CompiledSiteActuator& actuator, Real t, const SpatialTransform& world,
+                   const Vec6& v) {
+  const SiteActuatorDef& d = actuator.def;
+  SitePull pull;
+  pull.target = Vec3(evaluate_keys(d.interpolation, d.x, t), evaluate_keys(d.interpolation, d.y, t),
+                     evaluate_keys(d.interpolation, d.z, t));
+  pull.target_velocity =
+      Vec3(evaluate_keys_rate(d.interpolation, d.x, t), evaluate_keys_rate(d.interpolation, d.y, t),
+           evaluate_keys_rate(d.interpolation, d.z, t));
+  const Vec3& local = actuator.site.position;
+  pull.position = world.r + world.E.transpose() * local;
+  pull.velocity = world.E.transpose() * (v.tail<3>() + v.head<3>().cross(local));
+  pull.force = d.stiffness * (pull.target - pull.position) +
+               d.damping * (pull.target_velocity - pull.velocity);
+  if (d.max_force) {
+    const Real size = pull.force.norm();
+    if (size > *d.max_force) {
+      pull.force *= *d.max_force / size;
+      pull.saturated = true;
+    }
+  }
+  return pull;
+}
+
+ForceVector site_pull_force(const CompiledSiteActuator& actuator, const SpatialTransform& world,
+                            const SitePull& pull) {
+  const Vec3 f = world.E * pull.force;
+  return {actuator.site.position.cross(f), f};
+}
+
+}  // namespace pbm
