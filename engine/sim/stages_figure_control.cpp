@@ -72,6 +72,7 @@ void figure_step_start(const SubstepContext& c) {
   const Real t1 = c.state.time + c.dt;
   for (std::size_t f = 0; f < c.model.figures.size(); ++f) {
     const CompiledFigure& figure = c.model.figures[f];
+    if (figure.impulses.empty()) continue;
     int& applied = c.state.impulses_applied[f];
     for (; applied < static_cast<int>(figure.impulses.size()); ++applied) {
       const CompiledImpulse& impulse = figure.impulses[applied];
