@@ -79,6 +79,8 @@ struct Primitive {
   Vec3f half_size{1, 1, 1};            // [m], see above
   Material material{{0.55f, 0.55f, 0.6f}, 0.8f};
   int pick = -1;
+  // A figure's segment (what the mouse spring grabs: its figure and segment index), or -1.
+  int figure = -1, segment = -1;
   Layer layer = Layer::scene;
 };
 

@@ -6,12 +6,16 @@
 // energy a controlled chain gains, and the waist scenes follow the book's figs. 15.7, 15.8.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include "control/mrac.h"
 #include "figure/articulated_body.h"
+#include "figure/joint_space_inertia.h"
 #include "figure_points.h"
 #include "scene/scene_json.h"
 #include "sim/simulation.h"
@@ -144,9 +148,10 @@ TEST(FigureControlWorld, AStablePdTakesTheSceneStepWhereTheExplicitPdNeedsTwenty
       parse_scene(arm_scene(1, "{\"kind\": \"pd\", " + gains + "}", solver), "arm.json"));
   const Real I = 0.01 + 0.25;
   const Real limit = 2 / (1e3 / I + std::sqrt(1e5 / I));
-  EXPECT_NEAR(explicit_pd.model.figures[0].servo_step_limit, limit, 1e-12);
+  EXPECT_NEAR(explicit_pd.model.figures[0].step_limit_implicit_damping.step, limit, 1e-12);
   EXPECT_NEAR(explicit_pd.model.substep, kStabilitySafety * limit, 1e-12);
-  EXPECT_NE(explicit_pd.model.notes.find("explicit PD's stability limit"), std::string::npos)
+  EXPECT_NE(explicit_pd.model.notes.find("controller 0's explicit PD and joint forces"),
+            std::string::npos)
       << explicit_pd.model.notes;
   EXPECT_EQ(stable.model.substep, 0.01);
   for (int frame = 0; frame < 100; ++frame) {
@@ -163,6 +168,95 @@ TEST(FigureControlWorld, AStablePdTakesTheSceneStepWhereTheExplicitPdNeedsTwenty
   EXPECT_GE(explicit_pd.stats.substeps, 20);
   EXPECT_NEAR(stable.state.q[0], expected, 1e-7);
   EXPECT_NEAR(explicit_pd.state.q[0], expected, 1e-7);
+}
+
+// The arm under 500 N m s/rad of joint damping creeps down as I q'' = -d q' + m g l cos(q),
+// integrated here independently at a fine step.
+Real damped_arm_angle(Real I, Real d, Real seconds) {
+  Real q = 0, w = 0;
+  const Real h = 1e-6;
+  for (long k = 0; k < std::lround(seconds / h); ++k) {
+    w += h * (-d * w + 9.81 * 0.5 * std::cos(q)) / I;
+    q += h * w;
+  }
+  return q;
+}
+
+TEST(FigureControlWorld, HeavyJointDampingIsImplicitUnderEulerAndWithinItsLimitUnderRk4) {
+  // 500 N m s/rad on the arm's hinge (0.26 kg m^2): the damped mode I q'' = -d q' is explicitly
+  // stable only below 2 I / d = 1.04 ms. Euler takes the damper at the step's end and keeps the
+  // scene's 10 ms; RK4 keeps it explicit, so the World takes 0.9 of the limit and says so. Both
+  // run without a retry and follow the fine-step solution.
+  const Real I = 0.01 + 0.25, d = 500;
+  const Real expected = damped_arm_angle(I, d, 1.0);
+  for (const char* integrator : {"euler", "rk4"}) {
+    const std::string solver =
+        std::string(R"({"dt": 0.01, "fps": 100, "integrator": ")") + integrator + "\"}";
+    Simulation sim(parse_scene(arm_scene(1, "", solver, d), "arm.json"));
+    const CompiledFigure& figure = sim.model.figures[0];
+    EXPECT_NEAR(figure.step_limit_explicit_damping.step, 2 * I / d, 1e-12);
+    EXPECT_NEAR(figure.step_limit_explicit_damping.inertia, I, 1e-12);
+    EXPECT_EQ(figure.step_limit_explicit_damping.controller, -1);
+    EXPECT_EQ(figure.step_limit_explicit_damping.damping, d);
+    EXPECT_EQ(figure.step_limit_implicit_damping.step, std::numeric_limits<Real>::infinity());
+    const bool euler = std::string(integrator) == "euler";
+    EXPECT_NEAR(sim.model.substep, euler ? 0.01 : kStabilitySafety * 2 * I / d, 1e-12);
+    if (!euler) {
+      EXPECT_NE(sim.model.notes.find("joint 'link' DOF 0"), std::string::npos) << sim.model.notes;
+      EXPECT_NE(sim.model.notes.find("of its joint forces"), std::string::npos) << sim.model.notes;
+    }
+    int retries = 0;
+    for (int frame = 0; frame < 100; ++frame) {
+      ASSERT_TRUE(advance_frame(sim).ok);
+      retries += sim.stats.retries;
+    }
+    std::printf("damping 500 on 0.26 kg m^2, %s: substep %.4g s, q(1 s) %.6f (fine-step %.6f)\n",
+                integrator, sim.model.substep, sim.state.q[0], expected);
+    EXPECT_EQ(retries, 0);
+    EXPECT_NEAR(sim.state.q[0], expected, 2e-4);
+  }
+}
+
+TEST(FigureControlWorld, TheStepLimitCountsTheWholeChainsModeNotOneJointsInertia) {
+  // Five 1 kg capsule links under 1e3 N m s/rad per joint (RK4): the fastest damped mode of
+  // H^-1 D is faster than any single joint's d / I^A (its articulated inertia with the parent
+  // held), since the joints move together. The limit is that mode's 2 / lambda, which the run
+  // keeps without a retry.
+  std::string segments;
+  for (int i = 0; i < 5; ++i) {
+    segments +=
+        std::string(i ? ", " : "") + R"({"name": "s)" + std::to_string(i) + "\"" +
+        (i ? R"(, "parent": "s)" + std::to_string(i - 1) + "\"" : "") +
+        R"(, "joint": {"axis": [0, 1, 0], "damping": 1000, "q0": [0.3], "position": [0, 0, )" +
+        (i ? "-0.5" : "3") + R"(]}, "shape": {"kind": "capsule", "size": [0.05, 0.05, 0.2],
+                "center": [0, 0, -0.25]}, "mass": 1})";
+  }
+  Simulation sim(parse_scene(R"({"solver": {"dt": 0.01, "fps": 50, "integrator": "rk4"},
+    "figures": [{"name": "chain", "segments": [)" +
+                                 segments + "]}]}",
+                             "chain.json"));
+  const CompiledFigure& figure = sim.model.figures[0];
+  FigureWorkspace ws;
+  size_figure_workspace(figure.model, ws);
+  MatX H;
+  joint_space_inertia(figure.model, figure.q0.data(), ws, H);
+  const Eigen::SelfAdjointEigenSolver<MatX> modes(1000 * H.inverse());
+  const Real lambda = modes.eigenvalues().maxCoeff();
+  EXPECT_NEAR(figure.step_limit_explicit_damping.step, 2 / lambda, 1e-9 * 2 / lambda);
+  // No joint alone is that fast: the largest 1000 / H_ii is slower.
+  Real single = 0;
+  for (int i = 0; i < 5; ++i) single = std::max(single, 1000 / H(i, i));
+  EXPECT_GT(lambda, 1.5 * single);
+  int retries = 0;
+  for (int frame = 0; frame < 50; ++frame) {
+    ASSERT_TRUE(advance_frame(sim).ok);
+    retries += sim.stats.retries;
+  }
+  std::printf(
+      "5-link chain, d 1e3: mode %.4g 1/s (largest single joint %.4g), substep %.4g s, "
+      "%d retries in 1 s\n",
+      lambda, single, sim.model.substep, retries);
+  EXPECT_EQ(retries, 0);
 }
 
 // A 3-link chain whose joints follow smooth trajectories under MRAC (t_s = 0.5 s; RK4): kinetic

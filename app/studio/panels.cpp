@@ -595,10 +595,44 @@ void stats(Studio& studio) {
   }
 }
 
+// The control panel of fig. 15.11 (the crane's levers): dragging a controller's target sets it
+// live during play (sim/runner.h, ControlSet), recorded into the controller's live keys so that
+// playback and the saved file repeat it; the whole drag is one undo step.
+void control_target(Studio& studio, int figure, int controller, const ControlSample& now) {
+  const bool active = studio.control_figure == figure && studio.control_index == controller;
+  double value = active ? studio.control_value : now.desired;
+  const double speed = std::max(1e-3, 0.005 * std::max(std::abs(value), 1.0));
+  ImGui::PushID(figure * 4096 + controller);
+  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.6f);
+  const bool changed = ImGui::DragScalar("target", ImGuiDataType_Double, &value,
+                                         static_cast<float>(speed), nullptr, nullptr, "%.4f");
+  if (ImGui::IsItemActivated() && studio.status.scene) {
+    studio.control_figure = figure;
+    studio.control_index = controller;
+    studio.control_scene_before = nlohmann::json::parse(scene_to_json(*studio.status.scene));
+  }
+  if (changed && studio.runner) {
+    studio.control_value = value;
+    studio.runner->post(ControlSet{figure, controller, value});
+  }
+  if (ImGui::IsItemDeactivated() && studio.control_figure == figure &&
+      studio.control_index == controller) {
+    if (ImGui::IsItemDeactivatedAfterEdit() && !studio.control_scene_before.is_null()) {
+      studio.history.push({"", std::move(studio.control_scene_before), nullptr, "control"});
+    }
+    studio.control_scene_before = nullptr;
+    studio.control_figure = studio.control_index = -1;
+  }
+  ImGui::SameLine();
+  ImGui::Text("actual %.4f", now.actual);
+  ImGui::PopID();
+}
+
 // The controlled DOFs' trajectories over the last seconds (figs. 15.7, 15.8): desired (white),
 // the MRAC reference model (yellow; the desired for PD servos) and actual (cyan), with the
 // actuator's output and whether it is at its limit.
 void controllers_panel(Studio& studio) {
+  ImGui::TextDisabled("drag a target to set it live (recorded as the controller's live keys)");
   const Scene& scene = *studio.status.scene;
   const FrameStats& f = studio.status.stats;
   int k = 0;
@@ -610,6 +644,7 @@ void controllers_panel(Studio& studio) {
       ImGui::Text("%s / %s [%d] (%s): u %.4g%s", scene.figures[fi].name.c_str(), c.joint.c_str(),
                   c.dof, name_of(kControllerKindNames, c.kind), now.output,
                   now.saturated ? ", at its limit" : "");
+      control_target(studio, static_cast<int>(fi), static_cast<int>(ci), now);
       const ImVec2 origin = ImGui::GetCursorScreenPos();
       const ImVec2 size(ImGui::GetContentRegionAvail().x, 70);
       ImDrawList* draw = ImGui::GetWindowDrawList();

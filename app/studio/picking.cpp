@@ -1,5 +1,6 @@
 #include "picking.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -45,6 +46,61 @@ std::optional<Pick> pick_body(const draw::Snapshot& snapshot, const Ray& ray) {
       const float w[3] = {1 - u - v, u, v};
       const int corner = w[0] >= w[1] && w[0] >= w[2] ? 0 : (w[1] >= w[2] ? 1 : 2);
       best = Pick{mesh.pick, t[corner], ray.origin + distance * ray.direction, distance};
+    }
+  }
+  return best;
+}
+
+namespace {
+
+// Signed distance from p (the primitive's frame) to its surface (draw/snapshot.h's half_size).
+float primitive_distance(const draw::Primitive& shape, const Vec3f& p) {
+  const Vec3f& h = shape.half_size;
+  switch (shape.shape) {
+    case draw::PrimitiveShape::sphere:
+      return p.norm() - h.x();
+    case draw::PrimitiveShape::capsule: {
+      const float z = std::clamp(p.z(), -h.z(), h.z());
+      return (p - Vec3f(0, 0, z)).norm() - h.x();
+    }
+    case draw::PrimitiveShape::cylinder: {
+      const Eigen::Vector2f d(p.head<2>().norm() - h.x(), std::abs(p.z()) - h.z());
+      return std::min(d.maxCoeff(), 0.0f) + d.cwiseMax(0.0f).norm();
+    }
+    case draw::PrimitiveShape::box:
+    default: {
+      const Vec3f q = p.cwiseAbs() - h;
+      return q.cwiseMax(0.0f).norm() + std::min(q.maxCoeff(), 0.0f);
+    }
+  }
+}
+
+}  // namespace
+
+std::optional<FigurePick> pick_figure(const draw::Snapshot& snapshot, const Ray& ray) {
+  std::optional<FigurePick> best;
+  for (const draw::Primitive& shape : snapshot.primitives) {
+    if (shape.figure < 0) continue;
+    // Into the shape's frame, where its distance function is simple; the rotation keeps lengths,
+    // so distances along the ray stay distances.
+    const Eigen::Matrix3f to_local = shape.rotation.transpose();
+    const Vec3f origin = to_local * (ray.origin - shape.center);
+    const Vec3f direction = to_local * ray.direction;
+    const float reach = shape.half_size.norm() * 2;  // a bound on the shape's extent
+    // Skip shapes the ray passes wide of, and start the march near the shape.
+    const float along = -origin.dot(direction);
+    if ((origin + along * direction).norm() > reach) continue;
+    float t = std::max(0.0f, along - reach);
+    const float tolerance = 1e-5f * std::max(reach, 1e-3f);
+    for (int k = 0; k < 256 && t <= along + reach; ++k) {
+      const float d = primitive_distance(shape, origin + t * direction);
+      if (d < tolerance) {
+        if (!best || t < best->distance) {
+          best = FigurePick{shape.figure, shape.segment, ray.origin + t * ray.direction, t};
+        }
+        break;
+      }
+      t += d;
     }
   }
   return best;

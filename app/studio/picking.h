@@ -1,5 +1,6 @@
 // Mouse picking in the viewport: a ray through a pixel against every triangle of the snapshot's
-// pickable meshes (draw::Mesh::pick >= 0: the bodies), and the drag plane of the mouse spring
+// pickable meshes (draw::Mesh::pick >= 0: the bodies) and against figures' segment shapes, and
+// the drag plane of the mouse spring
 // (sec. 6.4).
 #pragma once
 
@@ -29,6 +30,18 @@ struct Pick {
 
 // The nearest hit of the ray on any pickable mesh (Moller-Trumbore), if any.
 std::optional<Pick> pick_body(const draw::Snapshot& snapshot, const Ray& ray);
+
+// A figure's segment under the ray: its figure and segment index (draw::Primitive::figure,
+// segment), the world hit point and the distance along the ray.
+struct FigurePick {
+  int figure = -1, segment = -1;
+  Eigen::Vector3f point;
+  float distance = 0;
+};
+
+// The nearest hit of the ray on a figure's segment shape (box, sphere, capsule, cylinder), if
+// any: sphere tracing of each shape's exact distance function in its own frame.
+std::optional<FigurePick> pick_figure(const draw::Snapshot& snapshot, const Ray& ray);
 
 // World bounds of the meshes whose pick is `pick` (empty if there are none): what F frames.
 draw::Bounds pick_bounds(const draw::Snapshot& snapshot, int pick);

@@ -58,7 +58,12 @@ struct Studio {
   bool camera_initialized = false;
   bool overlays = false;         // springs, constraints, the wireframe (View menu)
   bool show_controllers = true;  // the controllers' plot, when the scene has controllers
-  int samples = 2;               // viewport MSAA: llvmpipe pays per sample
+  // The control panel's target being dragged (figure, controller; -1: none), its value and the
+  // scene before the drag (one undo step for the whole drag).
+  int control_figure = -1, control_index = -1;
+  double control_value = 0;
+  nlohmann::json control_scene_before;
+  int samples = 2;  // viewport MSAA: llvmpipe pays per sample
   double speed = 1.0;
   std::deque<StatsSample> plot;  // the last seconds
   int last_plotted_frame = -1;

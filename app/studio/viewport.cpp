@@ -211,7 +211,20 @@ void Viewport::mousePressEvent(QMouseEvent* event) {
     const Camera camera = view_camera();
     const Ray ray = pixel_ray(camera, static_cast<float>(last_.x()), static_cast<float>(last_.y()),
                               width(), height());
-    if (const std::optional<Pick> pick = pick_body(*studio_.snapshot, ray)) {
+    const std::optional<Pick> pick = pick_body(*studio_.snapshot, ray);
+    const std::optional<FigurePick> segment = pick_figure(*studio_.snapshot, ray);
+    // The nearer of a body and a figure's segment under the cursor takes the spring.
+    if (segment && (!pick || segment->distance < pick->distance)) {
+      spring_point_ = segment->point;
+      studio_.runner->post(FigureSpringBegin{segment->figure, segment->segment,
+                                             segment->point.cast<Real>(),
+                                             segment->point.cast<Real>()});
+      studio_.selection = {"figures", segment->figure};
+      drag_ = Drag::spring;
+      if (studio_.status.scene) {
+        drag_scene_before_ = nlohmann::json::parse(scene_to_json(*studio_.status.scene));
+      }
+    } else if (pick) {
       spring_point_ = pick->point;
       studio_.runner->post(SpringBegin{pick->body, pick->node, pick->point.cast<Real>()});
       studio_.selection = {"bodies", pick->body};
@@ -286,7 +299,11 @@ void Viewport::mouseReleaseEvent(QMouseEvent* event) {
     // A click without a drag selects the body under the cursor.
     const Ray ray = pixel_ray(view_camera(), static_cast<float>(event->position().x()),
                               static_cast<float>(event->position().y()), width(), height());
-    if (const std::optional<Pick> pick = pick_body(*studio_.snapshot, ray)) {
+    const std::optional<Pick> pick = pick_body(*studio_.snapshot, ray);
+    const std::optional<FigurePick> segment = pick_figure(*studio_.snapshot, ray);
+    if (segment && (!pick || segment->distance < pick->distance)) {
+      studio_.selection = {"figures", segment->figure};
+    } else if (pick) {
       studio_.selection = {"bodies", pick->body};
     }
   }

@@ -25,6 +25,11 @@ struct ControllerDef {
   // The desired q_d(t) [rad or m]; q_d-dot and q_d-ddot are its derivatives (15.14).
   Interpolation interpolation = Interpolation::smooth;
   std::vector<Keyframe> keys;
+  // Targets set live during play from the studio's control panel (fig. 15.11's crane panel),
+  // recorded so that playback and the saved file repeat them: a step track that replaces `keys`
+  // from its first key's time on (each value held until the next, desired rate and acceleration
+  // zero). Empty: `keys` alone.
+  std::vector<Keyframe> live;
   // MRAC: the reference model's settling time t_s and the adaptation's alpha, beta (15.16),
   // (15.17); control/mrac.h says why these defaults.
   Real settling_time = 0.3;

@@ -28,13 +28,19 @@ void pack(const MracState& m, Real* s) {
 
 }  // namespace
 
-DesiredMotion controller_desired(const JointController& c, Real t) {
+DesiredMotion controller_desired(const JointController& c, Real t,
+                                 const std::optional<Keyframe>& held) {
+  if (held && held->time <= t) return {held->value, 0, 0};
+  const std::vector<Keyframe>& live = c.def.live;
+  if (!live.empty() && live.front().time <= t) {
+    return {evaluate_keys(Interpolation::step, live, t), 0, 0};
+  }
   return desired_motion(c.def.interpolation, c.def.keys, t);
 }
 
 ControlSample explicit_control(const JointController& c, Real t, Real q, Real q_dot,
-                               const Real* state, Real* rate) {
-  const DesiredMotion d = controller_desired(c, t);
+                               const Real* state, Real* rate, const std::optional<Keyframe>& held) {
+  const DesiredMotion d = controller_desired(c, t, held);
   ControlSample out{.desired = d.q, .reference = d.q, .actual = q};
   if (c.def.kind == ControllerKind::mrac) {
     MracState r;

@@ -4,6 +4,8 @@
 // solves for it; here it only reports its desired motion.
 #pragma once
 
+#include <optional>
+
 #include "control/controller_def.h"
 #include "control/mrac.h"
 
@@ -32,12 +34,17 @@ struct ControlSample {
   bool saturated = false;
 };
 
-DesiredMotion controller_desired(const JointController& c, Real t);
+// The desired motion at time t: `held` (a target set live during play, sim/inputs.h's
+// ControlInput) once its time has come, else the live keys from their first key's time on (a
+// step track), else the keys. A held or live target has zero desired rate and acceleration.
+DesiredMotion controller_desired(const JointController& c, Real t,
+                                 const std::optional<Keyframe>& held = {});
 
 // The explicit laws (MRAC, PD) at time t on a DOF at (q, q_dot): the sample, and the rates of the
 // controller's state entries (state, rate: its kMracStateSize entries; unused for PD).
 ControlSample explicit_control(const JointController& c, Real t, Real q, Real q_dot,
-                               const Real* state, Real* rate);
+                               const Real* state, Real* rate,
+                               const std::optional<Keyframe>& held = {});
 
 // The state a controller starts with at (q, q_dot): MRAC's model at the DOF, integrals zero
 // (mrac_start); writes kMracStateSize entries.

@@ -8,7 +8,7 @@ namespace pbm {
 
 void forward_dynamics(const FigureModel& figure, const Real* q, const Real* v, const Real* tau,
                       std::span<const ForceVector> f_ext, const Vec3& gravity, FigureWorkspace& ws,
-                      Real* qdd) {
+                      Real* qdd, const Real* armature) {
   const int n = figure.size();
   // Pass 1, outward: velocities, velocity products, and each segment's own inertia and bias
   // force p = v x* I v - f_ext as its articulated ones to start from.
@@ -30,7 +30,7 @@ void forward_dynamics(const FigureModel& figure, const Real* q, const Real* v, c
       // A single axis s (revolute, prismatic): U = I^A s, D = s^T U a scalar.
       const Vec6 s_i = S.col(0);
       const Vec6 U = ws.IA[i] * s_i;
-      const Real D_inv = 1 / s_i.dot(U);
+      const Real D_inv = 1 / (s_i.dot(U) + (armature ? armature[segment.v_offset] : 0));
       ws.U[i] = U;
       ws.D_inv[i].setConstant(1, 1, D_inv);
       const Real u = tau[segment.v_offset] - s_i.dot(ws.f[i]);
@@ -39,7 +39,10 @@ void forward_dynamics(const FigureModel& figure, const Real* q, const Real* v, c
       pa += (D_inv * u) * U;
     } else if (dof > 0) {
       ws.U[i].noalias() = ws.IA[i] * S;
-      const JointMatrix D = S.transpose() * ws.U[i];
+      JointMatrix D = S.transpose() * ws.U[i];
+      if (armature) {
+        for (int k = 0; k < dof; ++k) D(k, k) += armature[segment.v_offset + k];
+      }
       // D = S^T I^A S is symmetric positive definite for a segment with mass and inertia
       // (finalize_figure_model); its inverse is at most 6 x 6.
       ws.D_inv[i] = D.llt().solve(JointMatrix::Identity(dof, dof));

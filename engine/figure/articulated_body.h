@@ -12,8 +12,11 @@ namespace pbm {
 
 // q (n_q), v (n_v), tau (n_v); f_ext: one force per segment in its own coordinates, acting on
 // it (empty: none); gravity in the inertial frame. Writes qdd (n_v). ws sized for the figure.
+// armature (n_v, or null): a joint-space inertia added to each DOF's own, D = S^T I^A S +
+// diag(armature) (RBDA sec. 7.3's rotor inertia). The step uses it for implicit joint damping:
+// a damper -d (v + dt qddot) taken at the step's end moves dt d onto the left side.
 void forward_dynamics(const FigureModel& figure, const Real* q, const Real* v, const Real* tau,
                       std::span<const ForceVector> f_ext, const Vec3& gravity, FigureWorkspace& ws,
-                      Real* qdd);
+                      Real* qdd, const Real* armature = nullptr);
 
 }  // namespace pbm

@@ -271,7 +271,7 @@ CompiledFigure build_figure_model(const FigureDef& def, const std::string& file,
   if (out.n_control == 0 && (!out.site_actuators.empty() || !out.impulses.empty())) {
     out.n_control = 1;
   }
-  explicit_servo_limit(out);
+  explicit_joint_force_limit(out);
   return out;
 }
 

@@ -20,6 +20,18 @@ namespace pbm {
 Real shape_volume(const SegmentShapeDef& shape);
 Mat3 shape_inertia(const SegmentShapeDef& shape, Real m);
 
+// The longest step a figure's explicit joint forces stay stable at, and the DOF that sets it
+// with what sets it (figure/figure_controllers.h, explicit_joint_force_limit).
+struct JointStepLimit {
+  Real step = std::numeric_limits<Real>::infinity();  // none without such forces
+  int segment = -1;                                   // whose parent joint
+  int dof = 0;                                        // which of its DOFs
+  int controller = -1;  // the explicit PD servo on it, if one is part of the limit
+  Real inertia = 0;     // the mode's inertia on that DOF [kg m^2 or kg]
+  Real stiffness = 0;   // joint spring plus servo kp on it
+  Real damping = 0;     // joint damping (when explicit) plus servo kd on it
+};
+
 struct CompiledFigure {
   FigureModel model;
   VecX q0, v0;                                       // initial state, n_q and n_v
@@ -32,11 +44,9 @@ struct CompiledFigure {
   // Empty without controllers, site actuators and impulses; placed by sim/model.cpp.
   int n_control = 0;
   int state_control_offset = 0;
-  // The longest step the explicit PD servos stay stable at (infinite without any), the one that
-  // sets it and its DOF's inertia (figure/figure_controllers.h).
-  Real servo_step_limit = std::numeric_limits<Real>::infinity();
-  int servo_limiting = -1;
-  Real servo_inertia = 0;
+  // The step limits of its explicit joint forces: with the joint damping explicit (the
+  // Runge-Kutta integrators) and implicit (euler and implicit, sim/stages_figures.cpp).
+  JointStepLimit step_limit_explicit_damping, step_limit_implicit_damping;
   // Which of its segments' pairs may collide (sec. 15.3), n x n and symmetric, row-major: not a
   // segment with itself, its parent or its children, nor a non_colliding pair; all zero without
   // self_collisions. sim/model.cpp also clears the pairs that overlap at the initial pose.

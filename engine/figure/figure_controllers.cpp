@@ -1,10 +1,12 @@
 #include "figure/figure_controllers.h"
 
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <cmath>
 
 #include "core/error.h"
-#include "figure/articulated_body.h"
 #include "figure/figure_build.h"
+#include "figure/joint_space_inertia.h"
 
 namespace pbm {
 
@@ -63,6 +65,12 @@ std::vector<JointController> compile_figure_controllers(const FigureDef& def,
                         std::to_string(&earlier - out.data()) + ")");
       }
     }
+    for (std::size_t j = 0; j < d.live.size(); ++j) {
+      const bool ok = std::isfinite(d.live[j].time) && std::isfinite(d.live[j].value) &&
+                      d.live[j].time >= 0 && (j == 0 || d.live[j].time > d.live[j - 1].time);
+      require(ok, file, at + ".live[" + std::to_string(j) + "]",
+              "needs finite [time, value] with times >= 0 increasing strictly");
+    }
     require(!d.keys.empty(), file, at + ".keys", "needs at least one key [time, value]");
     for (std::size_t j = 0; j < d.keys.size(); ++j) {
       const bool ok = std::isfinite(d.keys[j].time) && std::isfinite(d.keys[j].value) &&
@@ -105,28 +113,89 @@ int controller_state_size(const std::vector<JointController>& controllers) {
   return n;
 }
 
-void explicit_servo_limit(CompiledFigure& figure) {
-  bool any = false;
-  for (const JointController& c : figure.controllers) any = any || c.def.kind == ControllerKind::pd;
-  if (!any) return;
+namespace {
+
+// The fastest rate lambda_max(H^-1 G) of the gains G = diag(g) on the figure of joint-space
+// inertia H (its Cholesky factor given), and the DOF that moves most in that mode (the largest
+// entry of the symmetric form's eigenvector, G^1/2 x). 0 without gains.
+Real fastest_mode(const Eigen::LLT<MatX>& H, const VecX& g, int& dof) {
+  dof = -1;
+  if (!(g.maxCoeff() > 0)) return 0;
+  // G^1/2 H^-1 G^1/2 is symmetric and has the eigenvalues of H^-1 G.
+  const VecX root = g.cwiseSqrt();
+  const MatX A = root.asDiagonal() * H.solve(MatX(root.asDiagonal()));
+  const Eigen::SelfAdjointEigenSolver<MatX> eigen(0.5 * (A + A.transpose()));
+  const Eigen::Index last = A.rows() - 1;
+  Eigen::Index at = 0;
+  eigen.eigenvectors().col(last).cwiseAbs().maxCoeff(&at);
+  dof = static_cast<int>(at);
+  return eigen.eigenvalues()[last];
+}
+
+JointStepLimit step_limit(const CompiledFigure& figure, const Eigen::LLT<MatX>& H,
+                          const VecX& stiffness, const VecX& damping,
+                          const std::vector<int>& servo) {
+  JointStepLimit limit;
+  int dof_k = -1, dof_d = -1;
+  const Real lambda_k = fastest_mode(H, stiffness, dof_k);
+  const Real lambda_d = fastest_mode(H, damping, dof_d);
+  if (lambda_k == 0 && lambda_d == 0) return limit;
+  // The damped oscillator's explicit bound, 2 / (d / I + sqrt(k / I)), with each rate the
+  // figure's fastest: exact for one DOF, conservative when the two modes differ.
+  limit.step = 2 / (lambda_d + std::sqrt(lambda_k));
+  const bool by_damping = lambda_d >= std::sqrt(lambda_k);
+  const int dof = by_damping ? dof_d : dof_k;
   const FigureModel& model = figure.model;
-  FigureWorkspace ws;
-  size_figure_workspace(model, ws);
-  const VecX zero = VecX::Zero(model.n_v);
-  VecX qdd(model.n_v);
-  forward_dynamics(model, figure.q0.data(), zero.data(), zero.data(), {}, Vec3::Zero(), ws,
-                   qdd.data());
+  for (int i = 0; i < model.size(); ++i) {
+    const int first = model.segments[i].v_offset;
+    if (dof >= first && dof < first + joint_v_size(model.segments[i].joint.kind)) {
+      limit.segment = i;
+      limit.dof = dof - first;
+    }
+  }
+  limit.controller = servo[static_cast<std::size_t>(dof)];
+  limit.stiffness = stiffness[dof];
+  limit.damping = damping[dof];
+  limit.inertia = by_damping ? damping[dof] / lambda_d : stiffness[dof] / lambda_k;
+  return limit;
+}
+
+}  // namespace
+
+void explicit_joint_force_limit(CompiledFigure& figure) {
+  const FigureModel& model = figure.model;
+  // Each DOF's explicit stiffness and damping: its joint's spring and damping, and the gains of
+  // the explicit PD servos on it (a stable PD's are implicit: figure/stable_pd.h).
+  VecX stiffness = VecX::Zero(model.n_v), joint_damping = VecX::Zero(model.n_v);
+  VecX servo_damping = VecX::Zero(model.n_v);
+  std::vector<int> servo(static_cast<std::size_t>(model.n_v), -1);
+  for (const SegmentModel& s : model.segments) {
+    for (int k = 0; k < joint_v_size(s.joint.kind); ++k) {
+      stiffness[s.v_offset + k] += s.stiffness;
+      joint_damping[s.v_offset + k] += s.damping;
+    }
+  }
   for (std::size_t k = 0; k < figure.controllers.size(); ++k) {
     const JointController& c = figure.controllers[k];
     if (c.def.kind != ControllerKind::pd) continue;
-    const Real inertia = 1 / ws.D_inv[c.segment](c.def.dof, c.def.dof);
-    const Real limit = 2 / (c.def.kd / inertia + std::sqrt(c.def.kp / inertia));
-    if (limit < figure.servo_step_limit) {
-      figure.servo_step_limit = limit;
-      figure.servo_limiting = static_cast<int>(k);
-      figure.servo_inertia = inertia;
-    }
+    stiffness[c.v_index] += c.def.kp;
+    servo_damping[c.v_index] += c.def.kd;
+    servo[static_cast<std::size_t>(c.v_index)] = static_cast<int>(k);
   }
+  if (model.n_v == 0 || (!(stiffness.maxCoeff() > 0) && !(joint_damping.maxCoeff() > 0) &&
+                         !(servo_damping.maxCoeff() > 0))) {
+    return;
+  }
+  // The modes of the whole figure at its initial pose: H^-1 K and H^-1 D, with H the joint-space
+  // inertia (coupled joints move together, so no joint's own inertia bounds them alone).
+  FigureWorkspace ws;
+  size_figure_workspace(model, ws);
+  MatX H;
+  joint_space_inertia(model, figure.q0.data(), ws, H);
+  const Eigen::LLT<MatX> factor(H);
+  figure.step_limit_explicit_damping =
+      step_limit(figure, factor, stiffness, joint_damping + servo_damping, servo);
+  figure.step_limit_implicit_damping = step_limit(figure, factor, stiffness, servo_damping, servo);
 }
 
 }  // namespace pbm

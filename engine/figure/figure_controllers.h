@@ -21,13 +21,14 @@ std::vector<JointController> compile_figure_controllers(const FigureDef& def,
 
 struct CompiledFigure;
 
-// The step limit of the figure's explicit PD servos (CompiledFigure::servo_step_limit): a servo
-// of gains kp, kd on a DOF of inertia I is a damped oscillator whose explicit step must stay
-// below 2 / (kd / I + sqrt(kp / I)) (the bound of the damped mode and of the spring's). I is the
-// DOF's articulated inertia at the initial pose (1 / (S^T I^A S)^-1 of the articulated-body
-// method: what the servo moves with its parent held), a guide the stability guard backs up as
-// the pose changes. MRAC's gains adapt and have no such bound.
-void explicit_servo_limit(CompiledFigure& figure);
+// The step limits of the figure's explicit joint forces (CompiledFigure's step_limit_*): joint
+// damping D, joint springs and explicit PD servos K make the figure of joint-space inertia H a
+// damped oscillator, H qddot = -D qdot - K q, whose explicit step must stay below
+// 2 / (lambda_max(H^-1 D) + sqrt(lambda_max(H^-1 K))) (the damped mode's bound 2 I / d and the
+// spring's 2 / omega, for one DOF exactly). H is taken at the initial pose, a guide the
+// stability guard backs up as the pose changes. With the joint damping implicit (euler) only the
+// servos' kd remain in D. MRAC's gains adapt and have no such bound; a stable PD's are implicit.
+void explicit_joint_force_limit(CompiledFigure& figure);
 
 // Entries the controllers keep in State::q: 0 without controllers, else the actuators' work and
 // kMracStateSize per MRAC.

@@ -110,6 +110,12 @@ struct SiteActuatorDef {
   Real stiffness = 1000;          // [N/m], > 0
   Real damping = 50;              // [N s/m], >= 0
   std::optional<Real> max_force;  // [N], > 0; none when absent
+  // When it pulls [s]: from t_begin, its stiffness and damping growing linearly over `ramp`
+  // seconds (a grab that must not jolt the figure), until t_end. The studio's mouse spring on a
+  // figure is such an actuator, recorded into the scene.
+  Real t_begin = 0;
+  std::optional<Real> t_end;  // none: forever
+  Real ramp = 0;
 };
 
 // Motion capture driving the figure (sec. 15.4's trajectories from recorded motion; issue:

@@ -1,6 +1,7 @@
 #include "figure/mocap_clip.h"
 
 #include <assimp/scene.h>
+#include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cmath>
 #include <stdexcept>

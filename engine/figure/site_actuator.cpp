@@ -1,5 +1,6 @@
 #include "figure/site_actuator.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -43,25 +44,43 @@ std::vector<CompiledSiteActuator> compile_site_actuators(const FigureDef& def,
     if (d.max_force && (!(*d.max_force > 0) || !std::isfinite(*d.max_force))) {
       throw Error(file, at + ".max_force", "must be > 0 and finite");
     }
+    if (!(d.t_begin >= 0) || !std::isfinite(d.t_begin)) {
+      throw Error(file, at + ".t_begin", "must be >= 0 and finite");
+    }
+    if (d.t_end && !(*d.t_end >= d.t_begin)) {
+      throw Error(file, at + ".t_end", "must be >= t_begin");
+    }
+    if (!(d.ramp >= 0) || !std::isfinite(d.ramp)) {
+      throw Error(file, at + ".ramp", "must be >= 0 and finite");
+    }
     out.push_back({find_site(def, figure, d.segment, d.site, file, at), d});
   }
   return out;
 }
 
 SitePull site_pull(const CompiledSiteActuator& actuator, Real t, const SpatialTransform& world,
-                   const Vec6& v) {
+                   const Vec6& v, const std::optional<HeldSiteTarget>& held) {
   const SiteActuatorDef& d = actuator.def;
   SitePull pull;
-  pull.target = Vec3(evaluate_keys(d.interpolation, d.x, t), evaluate_keys(d.interpolation, d.y, t),
-                     evaluate_keys(d.interpolation, d.z, t));
-  pull.target_velocity =
-      Vec3(evaluate_keys_rate(d.interpolation, d.x, t), evaluate_keys_rate(d.interpolation, d.y, t),
-           evaluate_keys_rate(d.interpolation, d.z, t));
+  if (held && held->time <= t) {
+    pull.target = held->target;
+  } else {
+    pull.target =
+        Vec3(evaluate_keys(d.interpolation, d.x, t), evaluate_keys(d.interpolation, d.y, t),
+             evaluate_keys(d.interpolation, d.z, t));
+    pull.target_velocity = Vec3(evaluate_keys_rate(d.interpolation, d.x, t),
+                                evaluate_keys_rate(d.interpolation, d.y, t),
+                                evaluate_keys_rate(d.interpolation, d.z, t));
+  }
   const Vec3& local = actuator.site.position;
   pull.position = world.r + world.E.transpose() * local;
   pull.velocity = world.E.transpose() * (v.tail<3>() + v.head<3>().cross(local));
-  pull.force = d.stiffness * (pull.target - pull.position) +
-               d.damping * (pull.target_velocity - pull.velocity);
+  pull.active = t >= d.t_begin && !(d.t_end && t >= *d.t_end);
+  if (!pull.active) return pull;
+  // A grab ramps its gains in, so that taking hold of a figure at rest does not jolt it.
+  const Real ramp = d.ramp > 0 ? std::min<Real>((t - d.t_begin) / d.ramp, 1) : 1;
+  pull.force = ramp * (d.stiffness * (pull.target - pull.position) +
+                       d.damping * (pull.target_velocity - pull.velocity));
   if (d.max_force) {
     const Real size = pull.force.norm();
     if (size > *d.max_force) {

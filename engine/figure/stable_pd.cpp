@@ -11,9 +11,13 @@ void stable_pd_accelerations(const FigureModel& figure, const VecX& q, const Vec
                              const VecX& tau_ext, std::span<const ForceVector> f_ext,
                              const Vec3& gravity, const VecX& Kp, const VecX& Kd,
                              const VecX& q_target, const VecX& v_target, Real dt,
-                             FigureWorkspace& ws, StablePdWorkspace& pd, VecX& qdd, VecX& tau_pd) {
+                             FigureWorkspace& ws, StablePdWorkspace& pd, VecX& qdd, VecX& tau_pd,
+                             const Real* armature) {
   const int n_v = figure.n_v;
   joint_space_inertia(figure, q.data(), ws, pd.H);
+  if (armature) {
+    for (int i = 0; i < n_v; ++i) pd.H(i, i) += armature[i];
+  }
   pd.zero.setZero(n_v);
   pd.C.resize(n_v);
   // The bias with the external forces: RNEA's tau at zero acceleration is C - J^T f_ext.

@@ -28,11 +28,13 @@ struct StablePdWorkspace {
 // whose q and v entries correspond); targets q_d and qdot_d per velocity coordinate. tau_ext
 // (n_v) are the other joint forces; f_ext the external forces on the segments as in
 // forward_dynamics (empty: none). Writes the accelerations and the servo torques applied
-// (tau_pd, n_v). Throws std::invalid_argument for a gain on a quaternion joint.
+// (tau_pd, n_v). armature (n_v or empty) joins H's diagonal, as in forward_dynamics (implicit
+// joint damping). Throws std::invalid_argument for a gain on a quaternion joint.
 void stable_pd_accelerations(const FigureModel& figure, const VecX& q, const VecX& v,
                              const VecX& tau_ext, std::span<const ForceVector> f_ext,
                              const Vec3& gravity, const VecX& Kp, const VecX& Kd,
                              const VecX& q_target, const VecX& v_target, Real dt,
-                             FigureWorkspace& ws, StablePdWorkspace& pd, VecX& qdd, VecX& tau_pd);
+                             FigureWorkspace& ws, StablePdWorkspace& pd, VecX& qdd, VecX& tau_pd,
+                             const Real* armature = nullptr);
 
 }  // namespace pbm

@@ -178,6 +178,19 @@ constexpr auto kControllerFields = std::to_array<Field<ControllerDef>>({
          .required = true,
          .description = "The desired joint position: [time s, value] pairs, strictly increasing "
                         "in time (sec. 15.1.2)."}),
+    {{.key = "live",
+      .type = ValueType::keys,
+      .unit = "rad or m",
+      .limit = kMaxTrajectoryKeys,
+      .default_note = "none",
+      .description = "Targets set live from the studio's control panel (fig. 15.11), recorded: "
+                     "a step track that replaces keys from its first time on."},
+     [](const FieldFormat& f, const JsonNode& node, ControllerDef& def, const ReadContext&) {
+       def.live = read_keyframes(f, node);
+     },
+     [](const FieldFormat& f, const ControllerDef& def, OrderedJson& object) {
+       if (!def.live.empty()) object[f.key] = keyframes_json(def.live);
+     }},
     value<&ControllerDef::settling_time>(
         {.key = "settling_time",
          .unit = "s",
@@ -279,6 +292,20 @@ constexpr auto kSiteActuatorFields = std::to_array<Field<SiteActuatorDef>>({
                                         .range = kPositive,
                                         .default_note = "unlimited",
                                         .description = "The actuator's limit |F|."}),
+    value<&SiteActuatorDef::t_begin>({.key = "t_begin",
+                                      .unit = "s",
+                                      .range = kNonNegative,
+                                      .description = "When it starts pulling."}),
+    value<&SiteActuatorDef::t_end>({.key = "t_end",
+                                    .unit = "s",
+                                    .range = kNonNegative,
+                                    .default_note = "forever",
+                                    .description = "When it lets go, >= t_begin."}),
+    value<&SiteActuatorDef::ramp>({.key = "ramp",
+                                   .unit = "s",
+                                   .range = kNonNegative,
+                                   .description = "Its gains grow linearly from 0 over this "
+                                                  "time from t_begin (a grab without a jolt)."}),
 });
 
 constexpr auto kMocapJointFields = std::to_array<Field<MocapJointDef>>({

@@ -17,8 +17,29 @@ struct TrackInput {
   Real value = 0;  // what the track holds from then on
 };
 
+// A joint controller's target set from the control panel (sim/runner.h, ControlSet): from `time`
+// on, the controller's desired position is `value` with zero rate, exactly as the step key the
+// runner records into its `live` keys (control/controller_def.h).
+struct ControlInput {
+  int figure = 0;      // index into Model::figures
+  int controller = 0;  // index into its controllers
+  Real time = 0;
+  Real value = 0;
+};
+
+// A site actuator's target set by a mouse drag on a figure (sim/runner.h, SpringMove): from `time`
+// on its path holds `target`, exactly as the step keys the runner records into its x, y, z.
+struct SiteTargetInput {
+  int figure = 0;
+  int actuator = 0;  // index into its site actuators
+  Real time = 0;
+  Vec3 target = Vec3::Zero();
+};
+
 struct Inputs {
-  std::vector<TrackInput> tracks;  // at most one per track
+  std::vector<TrackInput> tracks;             // at most one per track
+  std::vector<ControlInput> controls;         // at most one per controller
+  std::vector<SiteTargetInput> site_targets;  // at most one per site actuator
 };
 
 }  // namespace pbm

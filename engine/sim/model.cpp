@@ -39,6 +39,13 @@ TrackModel build_track(const Scene& scene, int t) {
   return track;
 }
 
+// A figure's step limit under the integrator: euler and implicit take its joint damping
+// implicitly (sim/stages_figures.cpp), the Runge-Kutta ones explicitly.
+const JointStepLimit& joint_step_limit(const CompiledFigure& figure, IntegratorKind kind) {
+  const bool implicit_damping = kind == IntegratorKind::euler || kind == IntegratorKind::implicit;
+  return implicit_damping ? figure.step_limit_implicit_damping : figure.step_limit_explicit_damping;
+}
+
 // Shortens the substep below every body's explicit stability limit for the configured
 // integrator (sec. 6.1; deform/stability_limit.h), with 10% to spare, and says so in the notes:
 // a step past the limit grows the fastest mode by a factor every step, an explosion the
@@ -50,19 +57,23 @@ void limit_substep(Model& model) {
   const Real frame = 1.0 / model.solver.fps;
   const Real taken = frame / std::max(1.0, std::ceil(frame / model.solver.dt - 1e-9));
   const Real limit = model.substep;
-  char note[400];
+  char note[512];
   if (limiting == nullptr) {
-    // A figure's explicit servo, if any, set the limit.
+    // A figure's explicit joint forces, if any, set the limit.
     for (const CompiledFigure& figure : model.figures) {
-      if (!(kStabilitySafety * figure.servo_step_limit == limit)) continue;
-      const JointController& c = figure.controllers[figure.servo_limiting];
+      const JointStepLimit& j = joint_step_limit(figure, model.solver.integrator);
+      if (!(kStabilitySafety * j.step == limit)) continue;
+      const std::string joint = figure.model.segments[j.segment].name;
+      const std::string by =
+          j.controller >= 0 ? "controller " + std::to_string(j.controller) + "'s explicit PD and"
+                            : "its";
       std::snprintf(note, sizeof note,
-                    "figure '%s', controller %d (joint '%s'): the substep %.3g s (solver.dt %g s) "
-                    "is past the explicit PD's stability limit %.3g s (kp %g, kd %g on %.4g of "
-                    "inertia); substeps shortened to %.3g s (a stable_pd servo needs no limit)",
-                    figure.model.name.c_str(), figure.servo_limiting, c.def.joint.c_str(), taken,
-                    model.solver.dt, figure.servo_step_limit, c.def.kp, c.def.kd,
-                    figure.servo_inertia, limit);
+                    "figure '%s', joint '%s' DOF %d: the substep %.3g s (solver.dt %g s) is past "
+                    "the stability limit %.3g s of %s joint forces (stiffness %g, damping %g on "
+                    "%.4g of inertia); substeps shortened to %.3g s (a stable_pd servo needs no "
+                    "limit)",
+                    figure.model.name.c_str(), joint.c_str(), j.dof, taken, model.solver.dt, j.step,
+                    by.c_str(), j.stiffness, j.damping, j.inertia, limit);
       model.notes += (model.notes.empty() ? "" : "; ") + std::string(note);
       return;
     }
@@ -119,10 +130,11 @@ Real stable_substep(const Model& model, std::span<const std::uint8_t> dormant,
       if (limiting) *limiting = &body;
     }
   }
-  // Explicit PD servos on figures (figure/figure_controllers.h): their own limit, once.
+  // Figures' explicit joint forces (figure/figure_controllers.h): their own limit, once.
   for (const CompiledFigure& figure : model.figures) {
-    if (kStabilitySafety * figure.servo_step_limit < limit) {
-      limit = kStabilitySafety * figure.servo_step_limit;
+    const Real step = joint_step_limit(figure, model.solver.integrator).step;
+    if (kStabilitySafety * step < limit) {
+      limit = kStabilitySafety * step;
       if (limiting) *limiting = nullptr;
     }
   }

@@ -10,6 +10,8 @@
 
 #include "core/bits.h"
 #include "core/error.h"
+#include "figure/figure_impact.h"
+#include "figure/figure_kinematics.h"
 #include "scene/scene_json.h"
 #include "scene/track_targets.h"
 
@@ -83,6 +85,26 @@ MouseSpringParameters mouse_spring_parameters(const Model& model, int body) {
   return p;
 }
 
+MouseSpringParameters figure_spring_parameters(const Model& model, int figure, int segment) {
+  const FigureModel& f = model.figures[figure].model;
+  Real m_figure = 0;
+  for (const SegmentModel& s : f.segments) m_figure += s.inertia.m;
+  const Real m_segment = f.segments[segment].inertia.m;
+  const Real dt = model.substep;
+  const Real g = model.gravity.norm() > 0 ? model.gravity.norm() : 9.81;
+  MouseSpringParameters p;
+  // As for a body (mouse_spring_parameters): the whole figure follows the hand within about
+  // 1 / (2 pi 1.5 Hz), 0.7 of critical damping. The spring acts at one point of one segment,
+  // whose own mass there must stay an explicitly stable oscillator (omega dt = 0.5; a point off
+  // the segment's centre moves with as little as a quarter of its mass, omega dt = 1 < 2).
+  const Real omega = 2 * std::numbers::pi * 1.5;
+  p.stiffness = std::min(m_figure * omega * omega, 0.25 * m_segment / (dt * dt));
+  p.damping = std::min(2 * 0.7 * std::sqrt(p.stiffness * m_figure), 0.5 * m_segment / dt);
+  // Three weights of the figure lift it briskly; a cursor off the screen must not fling it.
+  p.max_force = 3 * m_figure * g;
+  return p;
+}
+
 // ---- RunnerCore -------------------------------------------------------------------------------
 
 RunnerCore::RunnerCore(const Scene& scene, std::size_t cache_bytes)
@@ -143,12 +165,14 @@ std::string RunnerCore::handle(const Seek& seek) {
            std::to_string(last_frame());
   }
   release_spring();
+  flush_controls();
   go_to(seek.frame);
   return {};
 }
 
 std::string RunnerCore::handle(const ResetToStart&) {
   release_spring();
+  flush_controls();
   playing_ = false;
   go_to(0);
   return {};
@@ -157,7 +181,9 @@ std::string RunnerCore::handle(const ResetToStart&) {
 std::string RunnerCore::handle(const EditScene& edit) {
   // Through the file format, so that an edit is validated exactly like a loaded file and names
   // the field it broke in the same words (docs/architecture.md, "Errors and exit codes").
-  if (active_spring_ >= 0) return "finish dragging the mouse spring before editing the scene";
+  if (active_spring_ >= 0 || active_figure_ >= 0) {
+    return "finish dragging the mouse spring before editing the scene";
+  }
   Scene edited;
   try {
     Json json = Json::parse(scene_to_json(*scene_));
@@ -228,7 +254,130 @@ std::string RunnerCore::handle(const SpringBegin& begin) {
   return refusal;
 }
 
+std::string RunnerCore::handle(const FigureSpringBegin& begin) {
+  const int n_figures = static_cast<int>(model().figures.size());
+  if (begin.figure < 0 || begin.figure >= n_figures) {
+    return "mouse spring: no figure " + std::to_string(begin.figure) + " (the scene has " +
+           std::to_string(n_figures) + ")";
+  }
+  const FigureModel& figure = model().figures[begin.figure].model;
+  if (begin.segment < 0 || begin.segment >= figure.size()) {
+    return "mouse spring: figure '" + figure.name + "' has no segment " +
+           std::to_string(begin.segment) + " (it has " + std::to_string(figure.size()) + ")";
+  }
+  if (!begin.point.allFinite() || !begin.target.allFinite()) {
+    return "mouse spring: the grabbed point or the target is not finite";
+  }
+  release_spring();
+  Scene scene = *scene_;
+  FigureDef& def = scene.figures[static_cast<std::size_t>(begin.figure)];
+  const std::string& grabbed = figure.segments[static_cast<std::size_t>(begin.segment)].name;
+  SegmentDef& segment = *std::find_if(def.segments.begin(), def.segments.end(),
+                                      [&](const SegmentDef& s) { return s.name == grabbed; });
+  // A site at the grabbed point, named apart from the segment's own sites.
+  int drags = 0;
+  for (const SegmentDef& s : def.segments) {
+    drags += static_cast<int>(std::count_if(s.sites.begin(), s.sites.end(), [](const SiteDef& d) {
+      return d.name.rfind("drag ", 0) == 0;
+    }));
+  }
+  const std::string name = "drag " + std::to_string(drags + 1);
+  // The grabbed point in the segment's frame, from where the segment is now.
+  FigureWorkspace kinematics;
+  size_figure_workspace(figure, kinematics);
+  figure_kinematics(figure, state().q.data() + figure.state_q_offset, nullptr, kinematics);
+  std::vector<SpatialTransform> world;
+  segment_world_transforms(figure, kinematics, world);
+  const SpatialTransform& X = world[static_cast<std::size_t>(begin.segment)];
+  segment.sites.push_back({.name = name, .position = X.E * (begin.point - X.r)});
+  const MouseSpringParameters p = figure_spring_parameters(model(), begin.figure, begin.segment);
+  const Real t = state().time;
+  // Recorded as a site actuator of the scene, acting from now on: the frames already computed
+  // stay valid, and playback and the saved file repeat the drag.
+  SiteActuatorDef drag;
+  drag.segment = segment.name;
+  drag.site = name;
+  drag.interpolation = Interpolation::step;  // held between mouse events, as a body's drag
+  drag.x = {{t, begin.target.x()}};
+  drag.y = {{t, begin.target.y()}};
+  drag.z = {{t, begin.target.z()}};
+  drag.stiffness = p.stiffness;
+  drag.damping = p.damping;
+  drag.max_force = p.max_force;
+  drag.t_begin = t;
+  drag.ramp = kSpringRampSeconds;
+  const int index = static_cast<int>(def.site_actuators.size());
+  def.site_actuators.push_back(std::move(drag));
+  std::string refusal = rebuild(std::move(scene));
+  if (refusal.empty()) {
+    active_figure_ = begin.figure;
+    active_actuator_ = index;
+  }
+  return refusal;
+}
+
+std::string RunnerCore::handle(const ControlSet& set) {
+  const int n_figures = static_cast<int>(scene_->figures.size());
+  if (set.figure < 0 || set.figure >= n_figures) {
+    return "control: no figure " + std::to_string(set.figure) + " (the scene has " +
+           std::to_string(n_figures) + ")";
+  }
+  const FigureDef& def = scene_->figures[static_cast<std::size_t>(set.figure)];
+  const int n_model = static_cast<int>(model().figures[set.figure].controllers.size());
+  if (set.controller < 0 || set.controller >= n_model) {
+    return "control: figure '" + def.name + "' has no controller " +
+           std::to_string(set.controller) + " (it has " + std::to_string(n_model) + ")";
+  }
+  if (set.controller >= static_cast<int>(def.controllers.size())) {
+    return "control: controller " + std::to_string(set.controller) + " of figure '" + def.name +
+           "' follows its motion capture clip; map the joint out of the clip to drive it live";
+  }
+  if (!std::isfinite(set.value)) return "control: the target is not finite";
+  Scene scene = *scene_;
+  const Real t = state().time;
+  std::vector<Keyframe>& live = scene.figures[static_cast<std::size_t>(set.figure)]
+                                    .controllers[static_cast<std::size_t>(set.controller)]
+                                    .live;
+  // Keys later than now belong to frames that are dropped with this setting.
+  std::erase_if(live, [t](const Keyframe& key) { return key.time > t; });
+  if (!live.empty() && live.back().time == t) {
+    live.back().value = set.value;
+  } else {
+    live.push_back({t, set.value});
+  }
+  // The same key as an input of the step, acting exactly as the recorded key will once the scene
+  // is compiled (sim/inputs.h): setting a target while playing compiles nothing.
+  std::vector<ControlInput>& inputs = sim_->inputs.controls;
+  std::erase_if(inputs, [&](const ControlInput& in) {
+    return in.figure == set.figure && in.controller == set.controller;
+  });
+  inputs.push_back({set.figure, set.controller, t, set.value});
+  scene_ = std::make_shared<const Scene>(std::move(scene));
+  ++revision_;
+  timeline_.drop_after(frame_);
+  sim_->ws.last_measured.valid = false;
+  return {};
+}
+
+std::string RunnerCore::flush_controls() {
+  if (sim_->inputs.controls.empty()) return {};
+  // The recorded keys act exactly as the inputs did, so every cached frame stays valid: only the
+  // Model changes, the State carries over as it is.
+  std::unique_ptr<Simulation> sim;
+  try {
+    sim = std::make_unique<Simulation>(*scene_);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  sim->state = sim_->state;
+  sim->inputs.tracks = sim_->inputs.tracks;
+  sim->inputs.site_targets = sim_->inputs.site_targets;
+  sim_ = std::move(sim);
+  return {};
+}
+
 std::string RunnerCore::handle(const SpringMove& move) {
+  if (active_figure_ >= 0) return move_figure_spring(move.target);
   if (active_spring_ < 0) return "mouse spring: no spring is being dragged";
   if (!move.target.allFinite()) return "mouse spring: the target is not finite";
   Scene scene = *scene_;
@@ -265,13 +414,52 @@ std::string RunnerCore::handle(const SpringMove& move) {
   return {};
 }
 
+std::string RunnerCore::move_figure_spring(const Vec3& target) {
+  if (!target.allFinite()) return "mouse spring: the target is not finite";
+  Scene scene = *scene_;
+  const Real t = state().time;
+  SiteActuatorDef& drag = scene.figures[static_cast<std::size_t>(active_figure_)]
+                              .site_actuators[static_cast<std::size_t>(active_actuator_)];
+  for (int k = 0; k < 3; ++k) {
+    std::vector<Keyframe>& keys = k == 0 ? drag.x : k == 1 ? drag.y : drag.z;
+    // Keys later than now belong to frames that are dropped with this move.
+    std::erase_if(keys, [t](const Keyframe& key) { return key.time > t; });
+    if (!keys.empty() && keys.back().time == t) {
+      keys.back().value = target[k];
+    } else {
+      keys.push_back({t, target[k]});
+    }
+  }
+  // As a body's drag: the same target as an input of the step, exactly as the recorded keys.
+  std::vector<SiteTargetInput>& inputs = sim_->inputs.site_targets;
+  std::erase_if(inputs, [&](const SiteTargetInput& in) {
+    return in.figure == active_figure_ && in.actuator == active_actuator_;
+  });
+  inputs.push_back({active_figure_, active_actuator_, t, target});
+  scene_ = std::make_shared<const Scene>(std::move(scene));
+  ++revision_;
+  timeline_.drop_after(frame_);
+  sim_->ws.last_measured.valid = false;
+  return {};
+}
+
 std::string RunnerCore::handle(const SpringEnd&) {
-  if (active_spring_ < 0) return "mouse spring: no spring is being dragged";
+  if (active_spring_ < 0 && active_figure_ < 0) return "mouse spring: no spring is being dragged";
   release_spring();
   return {};
 }
 
 void RunnerCore::release_spring() {
+  if (active_figure_ >= 0) {
+    const int f = active_figure_, a = active_actuator_;
+    active_figure_ = active_actuator_ = -1;
+    Scene scene = *scene_;
+    SiteActuatorDef& drag =
+        scene.figures[static_cast<std::size_t>(f)].site_actuators[static_cast<std::size_t>(a)];
+    drag.t_end = std::max(state().time, drag.t_begin);
+    rebuild(std::move(scene));
+    return;
+  }
   const int s = active_spring_;
   active_spring_ = -1;
   if (s < 0 || s >= static_cast<int>(scene_->springs.size())) return;

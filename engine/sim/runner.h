@@ -66,13 +66,37 @@ struct SpringBegin {
   int node = 0;
   Vec3 target = Vec3::Zero();
 };
+// The mouse spring on a figure: the same mechanism with a site actuator (figure/site_actuator.h)
+// for the spring. Begin adds a site at `point` (world, on the segment as it is now) to `segment`
+// of `figure` (its index in the compiled figure) and a site actuator pulling it toward `target`,
+// with step-interpolated x, y, z keys, t_begin now, its stiffness ramped in over
+// kSpringRampSeconds, and gains sized on the figure's mass and the substep
+// (figure_spring_parameters); Move and End act on it as on a body's spring.
+struct FigureSpringBegin {
+  int figure = 0;
+  int segment = 0;
+  Vec3 point = Vec3::Zero();
+  Vec3 target = Vec3::Zero();
+};
 struct SpringMove {
   Vec3 target = Vec3::Zero();
 };
 struct SpringEnd {};
 
+// A target set on a figure's joint controller from the control panel (fig. 15.11's crane panel):
+// recorded at the current time as a key of the controller's `live` step track
+// (control/controller_def.h), replacing later keys and the key at that time, and set as an Input
+// of the step (sim/inputs.h) that acts exactly as that key: nothing is compiled, frames after the
+// current one are dropped. Commands that re-simulate or recompile (Seek, ResetToStart, EditScene,
+// a spring's Begin) compile the recorded keys first.
+struct ControlSet {
+  int figure = 0;
+  int controller = 0;
+  Real value = 0;
+};
+
 using Command = std::variant<Play, Pause, StepFrame, Seek, ResetToStart, EditScene, SpringBegin,
-                             SpringMove, SpringEnd>;
+                             FigureSpringBegin, SpringMove, SpringEnd, ControlSet>;
 
 inline constexpr Real kSpringRampSeconds = 0.2;
 
@@ -84,6 +108,10 @@ struct MouseSpringParameters {
   Real stiffness = 0, damping = 0, max_force = 0;
 };
 MouseSpringParameters mouse_spring_parameters(const Model& model, int body);
+// The same for a figure grabbed at a segment: the whole figure's mass follows the hand, the
+// stiffness capped so that the grabbed segment alone stays an explicitly stable oscillator at the
+// substep.
+MouseSpringParameters figure_spring_parameters(const Model& model, int figure, int segment);
 
 class RunnerCore {
  public:
@@ -122,13 +150,18 @@ class RunnerCore {
   std::string handle(const ResetToStart&);
   std::string handle(const EditScene&);
   std::string handle(const SpringBegin&);
+  std::string handle(const FigureSpringBegin&);
+  std::string handle(const ControlSet&);
   std::string handle(const SpringMove&);
   std::string handle(const SpringEnd&);
   // Compiles `scene` and makes it current; returns why not (then nothing changed).
   std::string rebuild(Scene scene);
   void release_spring();  // SpringEnd of the dragged spring, if any
-  bool advance();         // computes frame_ + 1 and caches it; false on failure
-  bool step_forward();    // frame_ + 1 from the cache, else computed
+  // Compiles the keys ControlSet recorded (their inputs then live in the Model); "" or why not.
+  std::string flush_controls();
+  std::string move_figure_spring(const Vec3& target);  // SpringMove of a figure's drag
+  bool advance();       // computes frame_ + 1 and caches it; false on failure
+  bool step_forward();  // frame_ + 1 from the cache, else computed
   void restore(int frame);
   void go_to(int frame);
 
@@ -140,6 +173,8 @@ class RunnerCore {
   int frame_ = 0;
   bool playing_ = false;
   int active_spring_ = -1;  // index in scene().springs of the spring being dragged
+  // Or the figure's site actuator being dragged (figure index, actuator index), else -1.
+  int active_figure_ = -1, active_actuator_ = -1;
   std::string message_;
 };
 

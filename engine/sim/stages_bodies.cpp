@@ -133,7 +133,8 @@ void body_velocity_split(const SubstepContext& c) {
   }
 }
 
-void measure_bodies(const Model& model, const State& state, Workspace& ws, FrameStats& stats) {
+void measure_bodies(const Model& model, const Inputs& /*inputs*/, const State& state, Workspace& ws,
+                    FrameStats& stats) {
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     const BodyModel& body = model.bodies[b];
     BodyWorkspace& bw = ws.bodies[b];

@@ -20,7 +20,8 @@ void body_kinematic_rates(const Model& model, const VecX& q, const VecX& v, VecX
 void body_renormalize(const SubstepContext& c);     // renormalize: unit quaternions (sec. 6.1)
 bool velocity_split_needed(const Model& model);     // no obstacle stage restores the split
 void body_velocity_split(const SubstepContext& c);  // velocity_split, a frame's last substep
-void measure_bodies(const Model& model, const State& state, Workspace& ws, FrameStats& stats);
+void measure_bodies(const Model& model, const Inputs& inputs, const State& state, Workspace& ws,
+                    FrameStats& stats);
 Real body_energy_allowance(const Model& model, const Inputs& inputs, const State& state, Real t_end,
                            Workspace& ws);
 std::string describe_body_failure(const Model& model, const State& state);

@@ -73,7 +73,8 @@ void constraint_rates(const RateContext& c) {
   add_constraint_rates(system_of(c.model), c.q, c.v, c.ws.bodies, *c.ws.constraints, c.v_dot);
 }
 
-void measure_constraints(const Model& model, const State& state, Workspace& ws, FrameStats& stats) {
+void measure_constraints(const Model& model, const Inputs& /*inputs*/, const State& state,
+                         Workspace& ws, FrameStats& stats) {
   const ConstrainedSystem system = system_of(model);
   stats.hinge_energy = hinge_spring_energy(system, ws.bodies);
   stats.constraint_violation =

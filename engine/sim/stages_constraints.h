@@ -16,7 +16,8 @@ void constraint_rates(const RateContext& c);  // constraints: (7.3), (7.4)
 bool constraint_projection_needed(const Model& model);
 void record_constraints(const SubstepContext& c);   // renormalize, after the bodies'
 void project_constraints(const SubstepContext& c);  // constraint_projection
-void measure_constraints(const Model& model, const State& state, Workspace& ws, FrameStats& stats);
+void measure_constraints(const Model& model, const Inputs& inputs, const State& state,
+                         Workspace& ws, FrameStats& stats);
 Real constraint_allowance(const Model& model, const Inputs& inputs, const State& state, Real t_end,
                           Workspace& ws);
 void add_constraint_drawables(const Model& model, const Inputs& inputs, const State& state,

@@ -20,9 +20,32 @@ Real limit_of(const JointController& c) {
 
 }  // namespace
 
+std::optional<Keyframe> control_input(const Inputs& inputs, std::size_t f, std::size_t k) {
+  for (const ControlInput& in : inputs.controls) {
+    if (in.figure == static_cast<int>(f) && in.controller == static_cast<int>(k)) {
+      return Keyframe{in.time, in.value};
+    }
+  }
+  return std::nullopt;
+}
+
+std::optional<HeldSiteTarget> site_target_input(const Inputs& inputs, std::size_t f,
+                                                std::size_t k) {
+  for (const SiteTargetInput& in : inputs.site_targets) {
+    if (in.figure == static_cast<int>(f) && in.actuator == static_cast<int>(k)) {
+      return HeldSiteTarget{in.time, in.target};
+    }
+  }
+  return std::nullopt;
+}
+
 bool figure_step_start_present(const Model& model) {
   for (const CompiledFigure& figure : model.figures) {
     if (figure.actuated() || !figure.impulses.empty()) return true;
+    // Implicit joint damping needs the substep's length (fw.step).
+    for (const SegmentModel& s : figure.model.segments) {
+      if (s.damping > 0) return true;
+    }
   }
   return false;
 }
@@ -96,11 +119,13 @@ void figure_controllers(const RateContext& c) {
     const Real* v = c.v.data() + figure.model.state_v_offset;
     const Real* state = c.q.data() + figure.state_control_offset;
     Real* rate = c.q_dot.data() + figure.state_control_offset;
-    for (const JointController& ctrl : figure.controllers) {
+    for (std::size_t k = 0; k < figure.controllers.size(); ++k) {
+      const JointController& ctrl = figure.controllers[k];
       if (ctrl.def.kind == ControllerKind::stable_pd) continue;
       const int s = std::max(ctrl.state_offset, 0);
-      w.tau[ctrl.v_index] +=
-          explicit_control(ctrl, c.t, q[ctrl.q_index], v[ctrl.v_index], state + s, rate + s).output;
+      w.tau[ctrl.v_index] += explicit_control(ctrl, c.t, q[ctrl.q_index], v[ctrl.v_index],
+                                              state + s, rate + s, control_input(c.inputs, f, k))
+                                 .output;
     }
     if (!figure.site_actuators.empty()) add_site_actuator_forces(c, f);
   }
@@ -117,16 +142,18 @@ void add_site_actuator_forces(const RateContext& c, std::size_t f) {
   const std::span<ForceVector> forces(fw.site_forces.data(),
                                       static_cast<std::size_t>(model.size()));
   for (ForceVector& force : forces) force = ForceVector{};
-  for (const CompiledSiteActuator& a : figure.site_actuators) {
+  for (std::size_t k = 0; k < figure.site_actuators.size(); ++k) {
+    const CompiledSiteActuator& a = figure.site_actuators[k];
     const int i = a.site.segment;
-    const SitePull pull = site_pull(a, c.t, fw.world[i], each.v[i]);
+    const SitePull pull =
+        site_pull(a, c.t, fw.world[i], each.v[i], site_target_input(c.inputs, f, k));
     forces[i] += site_pull_force(a, fw.world[i], pull);
   }
   add_external_joint_forces(model, forces, each, fw.control[f].tau.data());
 }
 
-void stable_pd_dynamics(const RateContext& c, std::size_t f,
-                        std::span<const ForceVector> external) {
+void stable_pd_dynamics(const RateContext& c, std::size_t f, std::span<const ForceVector> external,
+                        const Real* armature) {
   FiguresWorkspace& fw = *c.ws.figures;
   const CompiledFigure& figure = c.model.figures[f];
   const FigureModel& model = figure.model;
@@ -137,9 +164,10 @@ void stable_pd_dynamics(const RateContext& c, std::size_t f,
   w.Kd.setZero();
   w.q_target.setZero();
   w.v_target.setZero();
-  for (const JointController& ctrl : figure.controllers) {
+  for (std::size_t k = 0; k < figure.controllers.size(); ++k) {
+    const JointController& ctrl = figure.controllers[k];
     if (ctrl.def.kind != ControllerKind::stable_pd) continue;
-    const DesiredMotion d = controller_desired(ctrl, c.t);
+    const DesiredMotion d = controller_desired(ctrl, c.t, control_input(c.inputs, f, k));
     w.Kp[ctrl.v_index] = ctrl.def.kp;
     w.Kd[ctrl.v_index] = ctrl.def.kd;
     w.q_target[ctrl.v_index] = d.q;
@@ -151,7 +179,8 @@ void stable_pd_dynamics(const RateContext& c, std::size_t f,
   // servo).
   for (;;) {
     stable_pd_accelerations(model, fw.q, fw.v, w.tau_ext, external, c.ws.drive.gravity, w.Kp, w.Kd,
-                            w.q_target, w.v_target, fw.step, fw.each[f], w.pd, w.qdd, w.tau_pd);
+                            w.q_target, w.v_target, fw.step, fw.each[f], w.pd, w.qdd, w.tau_pd,
+                            armature);
     bool cut = false;
     for (const JointController& ctrl : figure.controllers) {
       const int i = ctrl.v_index;
@@ -188,8 +217,8 @@ void actuator_work_rate(const RateContext& c, std::size_t f) {
   }
 }
 
-void measure_figure_controllers(const CompiledFigure& figure, const State& state,
-                                FigureFrameStats& out) {
+void measure_figure_controllers(const CompiledFigure& figure, std::size_t f, const Inputs& inputs,
+                                const State& state, FigureFrameStats& out) {
   out.controllers.resize(figure.controllers.size());
   const Real* control = state.q.data() + figure.state_control_offset;
   out.work = figure.n_control > 0 ? control[0] : 0;
@@ -198,15 +227,16 @@ void measure_figure_controllers(const CompiledFigure& figure, const State& state
   for (std::size_t k = 0; k < figure.controllers.size(); ++k) {
     const JointController& c = figure.controllers[k];
     const Real qi = q[c.q_index], vi = v[c.v_index];
+    const std::optional<Keyframe> held = control_input(inputs, f, k);
     if (c.def.kind != ControllerKind::stable_pd) {
       Real rate[kMracStateSize];
-      out.controllers[k] =
-          explicit_control(c, state.time, qi, vi, control + std::max(c.state_offset, 0), rate);
+      out.controllers[k] = explicit_control(c, state.time, qi, vi,
+                                            control + std::max(c.state_offset, 0), rate, held);
       continue;
     }
     // The servo's spring-damper at the state; the step applies it at the step's end (within the
     // same limit), which differs from this by O(dt).
-    const DesiredMotion d = controller_desired(c, state.time);
+    const DesiredMotion d = controller_desired(c, state.time, held);
     const Real u = c.def.kp * (d.q - qi) + c.def.kd * (d.q_dot - vi);
     const Real limit = limit_of(c);
     out.controllers[k] = {.desired = d.q,

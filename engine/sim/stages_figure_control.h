@@ -7,8 +7,10 @@
 // table (sim/subsystems.cpp).
 #pragma once
 
+#include <optional>
 #include <span>
 
+#include "figure/site_actuator.h"
 #include "sim/subsystem.h"
 
 namespace pbm::stages {
@@ -30,14 +32,22 @@ void add_site_actuator_forces(const RateContext& c, std::size_t f);
 // Figure f's accelerations (its slice of c.v_dot) under its stable PD servos, with the joint
 // forces ws.figures->tau (damping and the explicit controllers) and the external forces on its
 // segments; their torque joins the actuators' forces.
-void stable_pd_dynamics(const RateContext& c, std::size_t f, std::span<const ForceVector> external);
+// armature: the figure's implicit joint damping (n_v), or null.
+void stable_pd_dynamics(const RateContext& c, std::size_t f, std::span<const ForceVector> external,
+                        const Real* armature);
 bool has_stable_pd(const CompiledFigure& figure);
 
 // The rate of the actuators' work, sum of u q-dot, once every actuator's force is known.
 void actuator_work_rate(const RateContext& c, std::size_t f);
 
-// The work done so far and each controller's sample at `state` (ws.drive at state.time).
-void measure_figure_controllers(const CompiledFigure& figure, const State& state,
-                                FigureFrameStats& out);
+// The work done so far and each controller's sample at `state` (ws.drive at state.time), for
+// figure f with the inputs of the moment.
+void measure_figure_controllers(const CompiledFigure& figure, std::size_t f, const Inputs& inputs,
+                                const State& state, FigureFrameStats& out);
+
+// The control panel's target on controller k of figure f, if one is set (sim/inputs.h).
+std::optional<Keyframe> control_input(const Inputs& inputs, std::size_t f, std::size_t k);
+// A mouse drag's target on site actuator k of figure f, if one is set (sim/inputs.h).
+std::optional<HeldSiteTarget> site_target_input(const Inputs& inputs, std::size_t f, std::size_t k);
 
 }  // namespace pbm::stages

@@ -45,6 +45,24 @@ void joint_damping(const FigureModel& figure, const Real* v, Real* tau) {
   }
 }
 
+// Under euler (and implicit, whose figures step alike) the joint damping is taken at the step's
+// end, -d (v + dt qddot): backward Euler on the damper, stable at any d, where the explicit
+// damper needs dt < 2 I / d (a crane's cable joint, the extremes' 1e6 N m s/rad). Its dt d part
+// is an armature of the articulated-body method; -d v stays among the joint forces. The
+// Runge-Kutta integrators keep it explicit, within the figure's step limit
+// (figure/figure_controllers.h). Returns the armature (n_v), or null when it has none.
+const Real* implicit_damping(const Model& model, const FigureModel& figure, FiguresWorkspace& fw) {
+  const IntegratorKind kind = model.solver.integrator;
+  if (kind != IntegratorKind::euler && kind != IntegratorKind::implicit) return nullptr;
+  bool any = false;
+  for (const SegmentModel& s : figure.segments) {
+    const int n = joint_v_size(s.joint.kind);
+    for (int k = 0; k < n; ++k) fw.armature[s.v_offset + k] = fw.step * s.damping;
+    any = any || (s.damping > 0 && n > 0);
+  }
+  return any ? fw.armature.data() : nullptr;
+}
+
 // One contact point of a segment with an obstacle, in world coordinates.
 struct ContactPoint {
   Vec3 point;     // the probe's deepest point [m]
@@ -232,17 +250,20 @@ void add_joint_overlays(const FigureModel& figure, const FigureDef& def,
 // The site actuators' strings, from each site to where its path is at t (the marionette's
 // strings), and for a quarter second after each impulse event a red stroke ending at the site
 // it struck, along the impulse.
-void add_event_drawables(const CompiledFigure& figure, Real t,
+void add_event_drawables(const CompiledFigure& figure, std::size_t f, const Inputs& inputs, Real t,
                          const std::vector<SpatialTransform>& world, draw::Snapshot& snap) {
   if (!figure.site_actuators.empty()) {
     draw::Lines strings{.end_points = true, .end_point_size = 4, .layer = draw::Layer::scene};
-    for (const CompiledSiteActuator& a : figure.site_actuators) {
-      const SitePull pull = site_pull(a, t, world[a.site.segment], Vec6::Zero());
+    for (std::size_t k = 0; k < figure.site_actuators.size(); ++k) {
+      const CompiledSiteActuator& a = figure.site_actuators[k];
+      const SitePull pull =
+          site_pull(a, t, world[a.site.segment], Vec6::Zero(), site_target_input(inputs, f, k));
+      if (!pull.active) continue;  // a mouse drag that ended, a string not yet taken up
       strings.points.push_back(pull.position.cast<float>());
       strings.points.push_back(pull.target.cast<float>());
       strings.colors.push_back({0.85f, 0.85f, 0.8f});
     }
-    snap.lines.push_back(std::move(strings));
+    if (!strings.points.empty()) snap.lines.push_back(std::move(strings));
   }
   constexpr Real kShown = 0.25;  // [s]
   constexpr Real kLength = 0.4;  // [m]
@@ -307,6 +328,7 @@ void size_figures(const Model& model, Workspace& ws) {
     fw.impacts.reserve(8 * segments);
   }
   size_figure_controllers(model, ws);
+  fw.armature.setZero(n_v);
 }
 
 bool figure_contacts_present(const Model& model) {
@@ -432,11 +454,12 @@ void figure_dynamics(const RateContext& c) {
     const std::span<const ForceVector> external =
         figure_contacts_present(c.model) ? std::span<const ForceVector>(fw.contact_forces[f])
                                          : std::span<const ForceVector>();
+    const Real* armature = implicit_damping(c.model, figure, fw);
     if (has_stable_pd(compiled)) {
-      stable_pd_dynamics(c, f, external);
+      stable_pd_dynamics(c, f, external, armature);
     } else {
       forward_dynamics(figure, q_of(figure, c.q), v, fw.tau.data(), external, c.ws.drive.gravity,
-                       fw.each[f], c.v_dot.data() + figure.state_v_offset);
+                       fw.each[f], c.v_dot.data() + figure.state_v_offset, armature);
     }
     actuator_work_rate(c, f);
   }
@@ -459,7 +482,8 @@ void figure_renormalize(const SubstepContext& c) {
   }
 }
 
-void measure_figures(const Model& model, const State& state, Workspace& ws, FrameStats& stats) {
+void measure_figures(const Model& model, const Inputs& inputs, const State& state, Workspace& ws,
+                     FrameStats& stats) {
   FiguresWorkspace& fw = *ws.figures;
   for (std::size_t f = 0; f < model.figures.size(); ++f) {
     const FigureModel& figure = model.figures[f].model;
@@ -480,12 +504,12 @@ void measure_figures(const Model& model, const State& state, Workspace& ws, Fram
     out.elastic = joint_spring_energy(figure, q_of(figure, state.q)) +
                   joint_limit_energy(model.figures[f].limits, q_of(figure, state.q));
     out.contacts = 0;
-    measure_figure_controllers(model.figures[f], state, out);
+    measure_figure_controllers(model.figures[f], f, inputs, state, out);
     out.site_actuators.resize(model.figures[f].site_actuators.size());
     for (std::size_t k = 0; k < out.site_actuators.size(); ++k) {
       const CompiledSiteActuator& a = model.figures[f].site_actuators[k];
-      out.site_actuators[k] =
-          site_pull(a, state.time, fw.world[a.site.segment], w.v[a.site.segment]);
+      out.site_actuators[k] = site_pull(a, state.time, fw.world[a.site.segment],
+                                        w.v[a.site.segment], site_target_input(inputs, f, k));
     }
     if (!figure_contacts_present(model)) continue;
     const FigureDef& def = model.scene.figures[f];
@@ -530,7 +554,6 @@ std::string describe_figure_failure(const Model& model, const State& state) {
 
 void add_figure_drawables(const Model& model, const Inputs& inputs, const State& state,
                           Workspace& ws, draw::Snapshot& snap) {
-  (void)inputs;
   FiguresWorkspace& fw = *ws.figures;
   for (std::size_t f = 0; f < model.figures.size(); ++f) {
     const FigureModel& figure = model.figures[f].model;
@@ -547,13 +570,15 @@ void add_figure_drawables(const Model& model, const Inputs& inputs, const State&
       p.half_size = shape.size.cast<float>();
       p.material.color = def.segments[i].color.cast<float>();
       p.material.roughness = 0.6f;
+      p.figure = static_cast<int>(f);
+      p.segment = i;
       // The shape's bounding sphere frames an automatic camera.
       const float reach = static_cast<float>(shape.size.norm());
       snap.focus.add(p.center - draw::Vec3f::Constant(reach));
       snap.focus.add(p.center + draw::Vec3f::Constant(reach));
     }
     add_joint_overlays(figure, def, fw.world, snap);
-    add_event_drawables(model.figures[f], state.time, fw.world, snap);
+    add_event_drawables(model.figures[f], f, inputs, state.time, fw.world, snap);
   }
 }
 

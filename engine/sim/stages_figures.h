@@ -27,7 +27,8 @@ void figure_dynamics(const RateContext& c);    // dynamics: sec. 15.2, the artic
 void figure_kinematics(const RateContext& c);  // kinematics: q-dot from v
 void figure_kinematic_rates(const Model& model, const VecX& q, const VecX& v, VecX& q_dot);
 void figure_renormalize(const SubstepContext& c);  // renormalize: unit quaternions (sec. 6.1)
-void measure_figures(const Model& model, const State& state, Workspace& ws, FrameStats& stats);
+void measure_figures(const Model& model, const Inputs& inputs, const State& state, Workspace& ws,
+                     FrameStats& stats);
 std::string describe_figure_failure(const Model& model, const State& state);
 void add_figure_drawables(const Model& model, const Inputs& inputs, const State& state,
                           Workspace& ws, draw::Snapshot& snap);

@@ -43,7 +43,8 @@ void resolve_obstacle_penetrations(const SubstepContext& c, std::span<const char
   }
 }
 
-void measure_obstacles(const Model& model, const State& state, Workspace& ws, FrameStats& stats) {
+void measure_obstacles(const Model& model, const Inputs& /*inputs*/, const State& state,
+                       Workspace& ws, FrameStats& stats) {
   (void)state;
   for (std::size_t b = 0; b < model.bodies.size(); ++b) {
     BodyWorkspace& bw = ws.bodies[b];

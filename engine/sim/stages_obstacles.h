@@ -16,7 +16,8 @@ void obstacle_collisions(const SubstepContext& c);  // obstacle_collisions: proj
 // The same for the bodies marked in `only` (all when it is empty): the constraint projection's
 // second pass, so a substep still ends with every node outside every obstacle.
 void resolve_obstacle_penetrations(const SubstepContext& c, std::span<const char> only);
-void measure_obstacles(const Model& model, const State& state, Workspace& ws, FrameStats& stats);
+void measure_obstacles(const Model& model, const Inputs& inputs, const State& state, Workspace& ws,
+                       FrameStats& stats);
 Real obstacle_energy_allowance(const Model& model, const Inputs& inputs, const State& state,
                                Real t_end, Workspace& ws);
 void add_obstacle_drawables(const Model& model, const Inputs& inputs, const State& state,

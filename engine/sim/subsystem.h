@@ -63,7 +63,7 @@ struct Subsystem {
   std::array<SubstepHook, 3> substep{};  // before and after the integrator, by stage
   // Adds its measurements of `state` to stats (ws.drive is at state.time; the bodies' hook runs
   // first and leaves their kinematics in ws.bodies).
-  void (*measure)(const Model&, const State&, Workspace&, FrameStats&) = nullptr;
+  void (*measure)(const Model&, const Inputs&, const State&, Workspace&, FrameStats&) = nullptr;
   // Energy [J] the frame from state.time to t_end may legitimately gain from this subsystem (the
   // stability guard's allowance), after measure of the frame's start.
   Real (*energy_allowance)(const Model&, const Inputs&, const State&, Real t_end,

@@ -48,8 +48,10 @@ struct FiguresWorkspace {
   std::vector<FigureWorkspace> each;
   VecX tau;
   std::vector<FigureControlWorkspace> control;  // per figure; empty without controllers
-  // The step length the stable PD servos are implicit over: the substep under way.
+  // The step length the stable PD servos and the joint damping (under euler and implicit) are
+  // implicit over: the substep under way.
   Real step = 0;
+  VecX armature;  // one figure's dt d per DOF: its implicit joint damping (forward_dynamics)
   std::vector<SpatialTransform> world;
   std::vector<std::vector<ForceVector>> contact_forces;  // per figure, per segment (own frame)
   std::vector<ImpactContact> impacts;

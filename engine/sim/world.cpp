@@ -243,7 +243,7 @@ void measure_state(const World& world, const Inputs& inputs, const State& state,
   for (const Subsystem* subsystem : world.subsystems) {
     if (!subsystem->measure) continue;
     const StageScope hook(ws.clock, StepStage::measure, subsystem->id);
-    subsystem->measure(model, state, ws, stats);
+    subsystem->measure(model, inputs, state, ws, stats);
   }
   stats.kinetic = stats.elastic = stats.potential = 0;
   for (const BodyFrameStats& body : stats.bodies) {
