@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -74,6 +75,25 @@ TEST(StudioSmoke, DragPullsTheBodyAndTheScreenshotShowsPanels) {
             12);
   EXPECT_GT(sky[0] + sky[1] + sky[2], 400) << "no lit viewport";
   EXPECT_GT(sky[2], sky[0]) << "the sky is bluish";
+}
+
+// The same drag on a figure's segment: pendulum-chain.json's chain lies nearly level toward -x
+// at frame 6, its second link under window pixel (556, 170). Pulled up from there, the chain
+// hangs differently at frame 24 from the undragged run, and the scene has gained the drag's site
+// actuator.
+TEST(StudioSmoke, DragOnAFiguresSegmentPullsTheFigure) {
+  const std::string scene = std::string(PBM_SOURCE_DIR) + "/scenes/pendulum-chain.json";
+  const SmokeResult still = smoke("chain-still", "", scene);
+  ASSERT_EQ(still.code, 0) << still.output;
+  const SmokeResult dragged = smoke("chain-dragged", "--drag 556,170:556,40", scene);
+  ASSERT_EQ(dragged.code, 0) << dragged.output;
+  ASSERT_EQ(still.report["figures"][0]["site_actuators"], 0);
+  ASSERT_EQ(dragged.report["figures"][0]["site_actuators"], 1);
+  const auto& a = still.report["figures"][0]["segments"][1];
+  const auto& b = dragged.report["figures"][0]["segments"][1];
+  const double moved = std::hypot(double(a[0]) - double(b[0]), double(a[2]) - double(b[2]));
+  std::printf("second link's centre moved %.4f m by the drag\n", moved);
+  EXPECT_GT(moved, 0.05);
 }
 
 // Pixels within 20 per channel of the spring colour (0.95, 0.85, 0.2): closer than the yellow

@@ -169,6 +169,20 @@ class SmokeRun : public QObject {
           c /= static_cast<float>(std::max<std::size_t>(1, body.positions->size()));
           report["bodies"].push_back({{"name", body.name}, {"center", {c.x(), c.y(), c.z()}}});
         }
+        // Figures: each segment's shape centre, and the site actuators the scene now has (a
+        // drag on a figure adds one).
+        const pbm::Scene& scene = *window_.studio().status.scene;
+        report["figures"] = nlohmann::json::array();
+        for (const pbm::FigureDef& figure : scene.figures) {
+          report["figures"].push_back({{"name", figure.name},
+                                       {"site_actuators", figure.site_actuators.size()},
+                                       {"segments", nlohmann::json::array()}});
+        }
+        for (const pbm::draw::Primitive& p : snap->primitives) {
+          if (p.figure < 0 || p.figure >= static_cast<int>(report["figures"].size())) continue;
+          report["figures"][p.figure]["segments"].push_back(
+              {p.center.x(), p.center.y(), p.center.z()});
+        }
       }
       const pbm::Studio::Tradeoff& t = window_.studio().tradeoff;
       if (t.report) {
