@@ -35,17 +35,19 @@ void write_csv(const std::string& path, const TradeoffReport& report) {
   if (!out) throw std::runtime_error(path + ": cannot write");
   out << "integrator,dt_s,tolerance,resolution,contact,current,ok,wall_s,substeps,evaluations,"
          "retries,"
-         "centre_error_m,shape_error,node_rms_m,constraint_violation_m,energy_error,pareto,"
+         "centre_error_m,joint_error_rad,shape_error,node_rms_m,constraint_violation_m,"
+         "energy_error,pareto,"
          "message\n";
   char line[512];
   for (const TradeoffPoint& p : report.points) {
     std::snprintf(
-        line, sizeof line, "%s,%.9g,%.3g,%g,%s,%d,%d,%.6g,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%d,",
+        line, sizeof line,
+        "%s,%.9g,%.3g,%g,%s,%d,%d,%.6g,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,",
         name_of(kIntegratorKindNames, p.setting.integrator), p.setting.dt, p.setting.tolerance,
         p.setting.resolution,
         p.setting.contact ? name_of(kContactQuadratureNames, *p.setting.contact) : "scene",
         p.setting.current ? 1 : 0, p.ok ? 1 : 0, p.wall_seconds, p.substeps, p.evaluations,
-        p.retries, p.centre_error, p.shape_error, p.node_rms, p.constraint_violation,
+        p.retries, p.centre_error, p.joint_error, p.shape_error, p.node_rms, p.constraint_violation,
         p.energy_error, p.pareto ? 1 : 0);
     std::string message = p.message;
     for (char& c : message) {
@@ -131,17 +133,17 @@ int run_bench_tradeoff(const TradeoffCommandOptions& o) {
   std::printf("bench tradeoff: '%s', %g s per run; reference %s: %.3f s of wall time\n",
               scene.name.c_str(), o.seconds, report.reference.label().c_str(),
               report.reference_wall_seconds);
-  std::printf("%-34s %9s %9s %10s %11s %10s %11s %10s %7s\n", "setting", "wall s", "substeps",
-              "centre m", "q_s", "nodes rms", "violation m", "energy", "front");
+  std::printf("%-34s %9s %9s %10s %10s %11s %10s %11s %10s %7s\n", "setting", "wall s", "substeps",
+              "centre m", "joint rad", "q_s", "nodes rms", "violation m", "energy", "front");
   for (const TradeoffPoint& p : report.points) {
     const std::string label = p.setting.label() + (p.setting.current ? " *" : "");
     if (!p.ok) {
       std::printf("%-34s failed: %s\n", label.c_str(), p.message.c_str());
       continue;
     }
-    std::printf("%-34s %9.4f %9ld %10.3e %11.3e %10.3e %11.3e %10.3e %7s\n", label.c_str(),
-                p.wall_seconds, p.substeps, p.centre_error, p.shape_error, p.node_rms,
-                p.constraint_violation, p.energy_error, p.pareto ? "yes" : "");
+    std::printf("%-34s %9.4f %9ld %10.3e %10.3e %11.3e %10.3e %11.3e %10.3e %7s\n", label.c_str(),
+                p.wall_seconds, p.substeps, p.centre_error, p.joint_error, p.shape_error,
+                p.node_rms, p.constraint_violation, p.energy_error, p.pareto ? "yes" : "");
   }
   std::printf("* the scene's own setting; nodes rms -1: another node count than the reference\n");
   const std::filesystem::path folder(o.out);

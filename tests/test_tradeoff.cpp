@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include "core/error.h"
 #include "plot_png.h"
@@ -63,16 +64,32 @@ TEST(Tradeoff, AFiguresSegmentsConvergeAsTheIntegratorsOrderSays) {
     const TradeoffPoint& coarse = find(r, IntegratorKind::euler, dt);
     const TradeoffPoint& fine = find(r, IntegratorKind::euler, dt / 2);
     const Real order = std::log2(coarse.centre_error / fine.centre_error);
-    std::printf("figure, euler dt %.3f -> %.4f: segments %.3e -> %.3e m, order %.2f; rk4 %.3e m\n",
-                dt, dt / 2, coarse.centre_error, fine.centre_error, order,
-                find(r, IntegratorKind::rk4, dt).centre_error);
+    const Real joint_order = std::log2(coarse.joint_error / fine.joint_error);
+    std::printf(
+        "figure, euler dt %.3f -> %.4f: segments %.3e -> %.3e m, order %.2f; joints "
+        "%.3e -> %.3e rad, order %.2f; rk4 %.3e m, %.3e rad\n",
+        dt, dt / 2, coarse.centre_error, fine.centre_error, order, coarse.joint_error,
+        fine.joint_error, joint_order, find(r, IntegratorKind::rk4, dt).centre_error,
+        find(r, IntegratorKind::rk4, dt).joint_error);
     EXPECT_NEAR(order, 1.0, 0.3);
+    EXPECT_NEAR(joint_order, 1.0, 0.3);
     EXPECT_LT(find(r, IntegratorKind::rk4, dt).centre_error, 1e-3 * coarse.centre_error);
+    EXPECT_LT(find(r, IntegratorKind::rk4, dt).joint_error, 1e-3 * coarse.joint_error);
+  }
+  // The joint error is an angle: below pi, and at least the segments' error over 3 x 1.5 m (each
+  // of the 3 joints, off by at most e rad, moves a segment origin within 1.5 m of it by at most
+  // 1.5 e).
+  for (const TradeoffPoint& p : r.points) {
+    EXPECT_LT(p.joint_error, std::numbers::pi);
+    EXPECT_GT(p.joint_error, p.centre_error / 1.5 / 3);
   }
   // RK4's fourth order (the reference, rk45 at 1e-10, is far below both).
   const Real rk4_order = std::log2(find(r, IntegratorKind::rk4, 0.004).centre_error /
                                    find(r, IntegratorKind::rk4, 0.002).centre_error);
   EXPECT_NEAR(rk4_order, 4.0, 0.5);
+  const Real rk4_joint_order = std::log2(find(r, IntegratorKind::rk4, 0.004).joint_error /
+                                         find(r, IntegratorKind::rk4, 0.002).joint_error);
+  EXPECT_NEAR(rk4_joint_order, 4.0, 0.5);
 }
 
 TEST(Tradeoff, ErrorsFollowTheIntegratorsOrderAndCostCountsTheSubsteps) {

@@ -54,6 +54,17 @@ int find_track(const Scene& scene, const std::string& target) {
   return -1;
 }
 
+// Records a user's input as a key at time t: keys later than t belong to frames that are dropped
+// with it, and a key already at t (a second input in the same frame) takes the new value.
+void record_key(std::vector<Keyframe>& keys, Real t, Real value) {
+  std::erase_if(keys, [t](const Keyframe& key) { return key.time > t; });
+  if (!keys.empty() && keys.back().time == t) {
+    keys.back().value = value;
+  } else {
+    keys.push_back({t, value});
+  }
+}
+
 }  // namespace
 
 MouseSpringParameters mouse_spring_parameters(const Model& model, int body) {
@@ -338,13 +349,7 @@ std::string RunnerCore::handle(const ControlSet& set) {
   std::vector<Keyframe>& live = scene.figures[static_cast<std::size_t>(set.figure)]
                                     .controllers[static_cast<std::size_t>(set.controller)]
                                     .live;
-  // Keys later than now belong to frames that are dropped with this setting.
-  std::erase_if(live, [t](const Keyframe& key) { return key.time > t; });
-  if (!live.empty() && live.back().time == t) {
-    live.back().value = set.value;
-  } else {
-    live.push_back({t, set.value});
-  }
+  record_key(live, t, set.value);
   // The same key as an input of the step, acting exactly as the recorded key will once the scene
   // is compiled (sim/inputs.h): setting a target while playing compiles nothing.
   std::vector<ControlInput>& inputs = sim_->inputs.controls;
@@ -389,13 +394,7 @@ std::string RunnerCore::handle(const SpringMove& move) {
       return "mouse spring: the scene no longer has " + target_track_name(active_spring_, k);
     }
     TrackDef& track = scene.tracks[static_cast<std::size_t>(tracks[k])];
-    // Keys later than now belong to frames that are dropped with this move.
-    std::erase_if(track.keys, [t](const Keyframe& key) { return key.time > t; });
-    if (!track.keys.empty() && track.keys.back().time == t) {
-      track.keys.back().value = move.target[k];
-    } else {
-      track.keys.push_back({t, move.target[k]});
-    }
+    record_key(track.keys, t, move.target[k]);
   }
   // The same keys as inputs of the step: from t on they hold the target exactly as the recorded
   // keys will once the drag ends and the scene is compiled (sim/inputs.h). The Model is not
@@ -422,13 +421,7 @@ std::string RunnerCore::move_figure_spring(const Vec3& target) {
                               .site_actuators[static_cast<std::size_t>(active_actuator_)];
   for (int k = 0; k < 3; ++k) {
     std::vector<Keyframe>& keys = k == 0 ? drag.x : k == 1 ? drag.y : drag.z;
-    // Keys later than now belong to frames that are dropped with this move.
-    std::erase_if(keys, [t](const Keyframe& key) { return key.time > t; });
-    if (!keys.empty() && keys.back().time == t) {
-      keys.back().value = target[k];
-    } else {
-      keys.push_back({t, target[k]});
-    }
+    record_key(keys, t, target[k]);
   }
   // As a body's drag: the same target as an input of the step, exactly as the recorded keys.
   std::vector<SiteTargetInput>& inputs = sim_->inputs.site_targets;

@@ -16,6 +16,7 @@ struct Trajectory {
   std::vector<std::vector<Vec3>> centres;  // [frame][body]
   std::vector<std::vector<VecX>> shapes;   // [frame][body]
   std::vector<VecX> nodes;                 // [frame]: every body's node positions, in order
+  std::vector<std::vector<Mat3>> joints;   // [frame][segment]: parent -> segment rotations
   std::vector<Real> total_energy;          // [frame]
   Real largest_energy = 0;                 // kinetic + elastic over frames
   Real violation = 0;
@@ -56,11 +57,14 @@ Trajectory record(const Scene& scene, Real seconds, const std::atomic<bool>* can
       // Every figure's segment origins join the centres (measure_state leaves each figure's
       // kinematics of the frame's end in the workspace): a joint angle's error shows there as
       // the distance it moves its segments.
+      std::vector<Mat3> joints;
       for (std::size_t k = 0; k < sim.model.figures.size(); ++k) {
         std::vector<SpatialTransform> world;
         segment_world_transforms(sim.model.figures[k].model, sim.ws.figures->each[k], world);
         for (const SpatialTransform& X : world) centres.push_back(X.r);
+        for (const SpatialTransform& X : sim.ws.figures->each[k].X_up) joints.push_back(X.E);
       }
+      t.joints.push_back(std::move(joints));
       // measure_state leaves the bodies' kinematics of the frame's end in the workspace.
       VecX nodes(3 * static_cast<Eigen::Index>(count));
       Eigen::Index at = 0;
@@ -102,6 +106,13 @@ void compare(const Trajectory& run, const Trajectory& ref, TradeoffPoint& point)
         point.shape_error = std::max(point.shape_error,
                                      (run.shapes[f][b] - ref.shapes[f][b]).cwiseAbs().maxCoeff());
       }
+    }
+    // Joint angles: the rotation between the run's and the reference's parent -> segment
+    // rotations, whatever the joint's coordinates (angles, a quaternion).
+    for (std::size_t j = 0; j < run.joints[f].size() && j < ref.joints[f].size(); ++j) {
+      const Mat3 relative = run.joints[f][j] * ref.joints[f][j].transpose();
+      const Real cosine = std::clamp((relative.trace() - 1) / 2, Real(-1), Real(1));
+      point.joint_error = std::max(point.joint_error, std::acos(cosine));
     }
     if (run.nodes[f].size() == ref.nodes[f].size()) {
       node_sum += (run.nodes[f] - ref.nodes[f]).squaredNorm();

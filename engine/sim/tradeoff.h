@@ -35,7 +35,10 @@ struct TradeoffPoint {
   std::string message;      // why the run failed
   double wall_seconds = 0;  // stepping only (FrameStats::wall_seconds)
   long substeps = 0, evaluations = 0, retries = 0;
-  Real centre_error = 0;          // |c - c_ref| [m], bodies' centres and figures' segments
+  Real centre_error = 0;  // |c - c_ref| [m], bodies' centres and figures' segments
+  // Figures' joints: the angle of each segment's rotation from its parent against the
+  // reference's [rad] (0 without figures; prismatic joints add none).
+  Real joint_error = 0;
   Real shape_error = 0;           // |q_s - q_s,ref| (max norm)
   Real node_rms = -1;             // RMS of node position differences [m]; -1: other node count
   Real constraint_violation = 0;  // the run's own max |C| [m]
