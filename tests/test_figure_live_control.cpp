@@ -154,6 +154,14 @@ TEST(FigureMouseSpring, HoldsTheArmWhereItsSpringBalancesGravityAndReplaysFromTh
   RunnerCore replayed(parse_scene(scene_to_json(dragged.scene()), "arm.json"));
   EXPECT_EQ(replayed.apply(Seek{175}), "");
   EXPECT_TRUE(same_state(replayed.state(), dragged.state()));
+  // A grab while another drag is under way releases that one first (recompiling the scene) and
+  // takes the new one on the new Model.
+  EXPECT_EQ(dragged.apply(FigureSpringBegin{0, 0, centre, centre}), "");
+  EXPECT_EQ(dragged.apply(FigureSpringBegin{0, 0, centre, centre + Vec3(0, 0, 0.1)}), "");
+  ASSERT_EQ(dragged.scene().figures[0].site_actuators.size(), 3u);
+  EXPECT_EQ(*dragged.scene().figures[0].site_actuators[1].t_end, dragged.state().time);
+  EXPECT_EQ(dragged.scene().figures[0].segments[0].sites.back().name, "drag 3");
+  EXPECT_EQ(dragged.apply(SpringEnd{}), "");
   // Bad grabs are refused.
   EXPECT_NE(dragged.apply(FigureSpringBegin{1, 0, centre, centre}), "");
   EXPECT_NE(dragged.apply(FigureSpringBegin{0, 1, centre, centre}), "");

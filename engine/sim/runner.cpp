@@ -271,15 +271,18 @@ std::string RunnerCore::handle(const FigureSpringBegin& begin) {
     return "mouse spring: no figure " + std::to_string(begin.figure) + " (the scene has " +
            std::to_string(n_figures) + ")";
   }
-  const FigureModel& figure = model().figures[begin.figure].model;
-  if (begin.segment < 0 || begin.segment >= figure.size()) {
-    return "mouse spring: figure '" + figure.name + "' has no segment " +
-           std::to_string(begin.segment) + " (it has " + std::to_string(figure.size()) + ")";
+  const FigureModel& grabbed_figure = model().figures[begin.figure].model;
+  if (begin.segment < 0 || begin.segment >= grabbed_figure.size()) {
+    return "mouse spring: figure '" + grabbed_figure.name + "' has no segment " +
+           std::to_string(begin.segment) + " (it has " + std::to_string(grabbed_figure.size()) +
+           ")";
   }
   if (!begin.point.allFinite() || !begin.target.allFinite()) {
     return "mouse spring: the grabbed point or the target is not finite";
   }
+  // Releasing a drag under way compiles the scene: the Model is a new one after it.
   release_spring();
+  const FigureModel& figure = model().figures[begin.figure].model;
   Scene scene = *scene_;
   FigureDef& def = scene.figures[static_cast<std::size_t>(begin.figure)];
   const std::string& grabbed = figure.segments[static_cast<std::size_t>(begin.segment)].name;
