@@ -20,25 +20,47 @@ void forward_dynamics(const FigureModel& figure, const Real* q, const Real* v, c
   }
   // Pass 2, inward: each segment's articulated inertia and bias force, with its joint's freedom
   // taken out, handed to its parent: I^a = I^A - U D^-1 U^T, p^a = p^A + I^a c + U D^-1 u.
+  // I^A and p^A become I^a and p^a in place.
   for (int i = n - 1; i >= 0; --i) {
     const SegmentModel& segment = figure.segments[i];
     const MotionSubspace& S = ws.S[i];
     const int dof = static_cast<int>(S.cols());
-    Mat6 Ia = ws.IA[i];
-    Vec6 pa = ws.f[i];
+    Mat6& Ia = ws.IA[i];
+    Vec6& pa = ws.f[i];
+    int zero_row = -1;
     if (dof == 1) {
-      // A single axis s (revolute, prismatic): U = I^A s, D = s^T U a scalar.
-      const Vec6 s_i = S.col(0);
-      const Vec6 U = ws.IA[i] * s_i;
-      const Real D_inv = 1 / (s_i.dot(U) + (armature ? armature[segment.v_offset] : 0));
-      ws.U[i] = U;
-      ws.D_inv[i].setConstant(1, 1, D_inv);
-      const Real u = tau[segment.v_offset] - s_i.dot(ws.f[i]);
-      ws.u[i].setConstant(1, u);
-      Ia.noalias() -= (D_inv * U) * U.transpose();
-      pa += (D_inv * u) * U;
+      // A single axis s (revolute, prismatic): U = I^A s, D = s^T U a scalar. Along a coordinate
+      // axis, s = +-e_k and U is a signed column of I^A.
+      const Real sign = ws.axis_sign[i];
+      const int k = ws.axis_column[i];
+      Vec6 U;
+      Real s_p;
+      if (k >= 0) {
+        U = sign * Ia.col(k);
+        s_p = sign * pa[k];
+      } else {
+        U.noalias() = Ia * S.col(0);
+        s_p = S.col(0).dot(pa);
+      }
+      const Real D =
+          (k >= 0 ? sign * U[k] : S.col(0).dot(U)) + (armature ? armature[segment.v_offset] : 0);
+      const Real D_inv = 1 / D;
+      const Real u = tau[segment.v_offset] - s_p;
+      ws.U[i].col(0) = U;
+      ws.D_inv[i](0, 0) = D_inv;
+      ws.u[i][0] = u;
+      const Vec6 UD = D_inv * U;
+      Ia.noalias() -= UD * U.transpose();
+      pa += u * UD;
+      if (k >= 0 && k < 3) {
+        // I^a s = U - U D^-1 D = 0 in exact arithmetic: row and column k vanish, and the
+        // transform to the parent skips them (add_inertia_to_parent's zero_row).
+        Ia.row(k).setZero();
+        Ia.col(k).setZero();
+        zero_row = k;
+      }
     } else if (dof > 0) {
-      ws.U[i].noalias() = ws.IA[i] * S;
+      ws.U[i].noalias() = Ia * S;
       JointMatrix D = S.transpose() * ws.U[i];
       if (armature) {
         for (int k = 0; k < dof; ++k) D(k, k) += armature[segment.v_offset + k];
@@ -48,7 +70,7 @@ void forward_dynamics(const FigureModel& figure, const Real* q, const Real* v, c
       ws.D_inv[i] = D.llt().solve(JointMatrix::Identity(dof, dof));
       // tau - S^T p^A in two steps: the one-expression form makes a heap temporary of the Map's
       // dynamic type (tests/test_allocations.cpp).
-      ws.u[i].noalias() = S.transpose() * ws.f[i];
+      ws.u[i].noalias() = S.transpose() * pa;
       ws.u[i] = Eigen::Map<const VecX>(tau + segment.v_offset, dof) - ws.u[i];
       const MotionSubspace UD = ws.U[i] * ws.D_inv[i];
       Ia.noalias() -= UD * ws.U[i].transpose();
@@ -56,22 +78,29 @@ void forward_dynamics(const FigureModel& figure, const Real* q, const Real* v, c
     }
     if (segment.parent < 0) continue;
     pa.noalias() += Ia * ws.c[i];
-    add_inertia_to_parent(ws.X_up[i], Ia, ws.IA[segment.parent]);
-    ws.f[segment.parent] += transform_to_parent(ws.X_up[i], pa);
+    add_inertia_to_parent(ws.X_up[i], Ia, ws.IA[segment.parent], zero_row);
+    add_transform_to_parent(ws.X_up[i], pa, ws.f[segment.parent]);
   }
   // Pass 3, outward: accelerations, qddot = D^-1 (u - U^T a'), a = a' + S qddot.
   const Vec6 a0 = gravity_acceleration(gravity);
   for (int i = 0; i < n; ++i) {
     const SegmentModel& segment = figure.segments[i];
     const Vec6& a_parent = segment.parent >= 0 ? ws.a[segment.parent] : a0;
-    ws.a[i] = transform_to_child(ws.X_up[i], a_parent) + ws.c[i];
+    ws.a[i] = transform_to_child(ws.X_up[i], a_parent, ws.c[i]);
     const int dof = static_cast<int>(ws.S[i].cols());
     if (dof == 0) continue;
     if (dof == 1) {
-      const Vec6 U = ws.U[i].col(0);
-      const Real qdd_i = ws.D_inv[i](0, 0) * (ws.u[i][0] - U.dot(ws.a[i]));
+      // U . a on scalars: a was just written a double at a time (figure_kinematics.h).
+      Real U_a = 0;
+      for (int k = 0; k < 6; ++k) U_a += ws.U[i](k, 0) * ws.a[i][k];
+      const Real qdd_i = ws.D_inv[i](0, 0) * (ws.u[i][0] - U_a);
       qdd[segment.v_offset] = qdd_i;
-      ws.a[i] += qdd_i * ws.S[i].col(0);
+      const int k = ws.axis_column[i];
+      if (k >= 0) {
+        ws.a[i][k] += ws.axis_sign[i] * qdd_i;
+      } else {
+        ws.a[i] += qdd_i * ws.S[i].col(0);
+      }
       continue;
     }
     Eigen::Map<VecX> qdd_i(qdd + segment.v_offset, dof);

@@ -18,6 +18,10 @@ struct FigureWorkspace {
   std::vector<Vec6> v;                 // segment velocity, segment coordinates
   std::vector<Vec6> c;                 // velocity-product acceleration c_J + v x v_J
   std::vector<Mat6> inertia;           // the segments' 6 x 6 spatial inertias (2.63), constant
+  // A single-DOF joint's axis as a column of S (joint_axis_column): 0..5, or -1 off the
+  // coordinate axes or for other joints; with its sign.
+  std::vector<int> axis_column;
+  std::vector<Real> axis_sign;
   // Recursions.
   std::vector<Vec6> a;             // segment acceleration
   std::vector<Vec6> f;             // RNEA's force; ABA's bias force p^A
