@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <numbers>
 
+#include "control/joint_trajectory.h"
 #include "core/error.h"
 #include "scene/scene_json.h"
 #include "sim/runner.h"
@@ -50,7 +51,7 @@ TEST(LiveControl, TargetsSetDuringPlayAreRecordedAndTheSavedScenePlaysThemBackBi
   EXPECT_EQ(live.apply(ControlSet{0, 0, 0.9}), "");  // the same instant: replaces the key
   step(live, 10);
   EXPECT_EQ(live.apply(ControlSet{0, 0, -0.3}), "");
-  const std::vector<Keyframe>& keys = live.scene().figures[0].controllers[0].live;
+  const std::vector<LiveKey>& keys = live.scene().figures[0].controllers[0].live;
   ASSERT_EQ(keys.size(), 2u);
   EXPECT_EQ(keys[0].time, 0.5);
   EXPECT_EQ(keys[0].value, 0.9);
@@ -100,11 +101,53 @@ TEST(LiveControl, ASeekAfterSeveralSettingsResimulatesThemAll) {
   EXPECT_GT(std::abs(second_only.state().q[0] - end.q[0]), 1e-3);
 }
 
+TEST(LiveControl, AJogMovesTheTargetAtItsSpeedFromWhereItIsAndReleasingItStopsThere) {
+  RunnerCore live(arm(kServo));
+  step(live, 25);  // 0.5 s along the keyed trajectory
+  const Real t0 = live.state().time;
+  const Real d0 = desired_motion(Interpolation::smooth, {{0, 0}, {1, 0.4}}, t0).q;
+  // The lever held at -0.5 rad/s: the target continues from the trajectory's position.
+  EXPECT_EQ(live.apply(ControlSet{0, 0, 0, -0.5, true}), "");
+  step(live, 10);
+  const Real t1 = live.state().time;
+  EXPECT_NEAR(live.last_stats().figures[0].controllers[0].desired, d0 - 0.5 * (t1 - t0), 1e-12);
+  step(live, 10);
+  // Released: the target stops where the jog had taken it.
+  const Real t2 = live.state().time;
+  EXPECT_EQ(live.apply(ControlSet{0, 0, 0, 0, true}), "");
+  const std::vector<LiveKey>& keys = live.scene().figures[0].controllers[0].live;
+  ASSERT_EQ(keys.size(), 2u);
+  EXPECT_EQ(keys[0].time, t0);
+  EXPECT_EQ(keys[0].value, d0);
+  EXPECT_EQ(keys[0].rate, -0.5);
+  EXPECT_EQ(keys[1].time, t2);
+  EXPECT_NEAR(keys[1].value, d0 - 0.5 * (t2 - t0), 1e-12);
+  EXPECT_EQ(keys[1].rate, 0);
+  const Real stop = keys[1].value;
+  step(live, 100);  // 2 s later the servo holds the arm at the stopped target
+  EXPECT_EQ(live.last_stats().figures[0].controllers[0].desired, stop);
+  const Real rest = servo_rest(stop, 200);
+  std::printf(
+      "jog -0.5 rad/s for %.2f s from %.6f: target stopped at %.6f, arm at %.6f rad "
+      "(static balance %.6f)\n",
+      t2 - t0, d0, stop, live.state().q[0], rest);
+  EXPECT_NEAR(live.state().q[0], rest, 1e-4);
+  // The jog is in the saved scene ([time, value, rate]) and replays bit for bit.
+  const std::string text = scene_to_json(live.scene());
+  RunnerCore replayed(parse_scene(text, "arm.json"));
+  ASSERT_EQ(replayed.scene().figures[0].controllers[0].live.size(), 2u);
+  EXPECT_EQ(replayed.scene().figures[0].controllers[0].live[0].rate, -0.5);
+  EXPECT_EQ(replayed.apply(Seek{145}), "");
+  EXPECT_TRUE(same_state(replayed.state(), live.state()));
+}
+
 TEST(LiveControl, BadSettingsAreRefusedWithTheReason) {
   RunnerCore core(arm(kServo));
   EXPECT_NE(core.apply(ControlSet{1, 0, 0.5}).find("no figure 1"), std::string::npos);
   EXPECT_NE(core.apply(ControlSet{0, 1, 0.5}).find("has no controller 1"), std::string::npos);
   EXPECT_NE(core.apply(ControlSet{0, 0, std::nan("")}).find("not finite"), std::string::npos);
+  EXPECT_NE(core.apply(ControlSet{0, 0, 0, std::nan(""), true}).find("rate is not finite"),
+            std::string::npos);
   EXPECT_TRUE(core.scene().figures[0].controllers[0].live.empty());
   // A live key out of order in a file names its field.
   std::string text = scene_to_json(arm(kServo));
@@ -115,6 +158,16 @@ TEST(LiveControl, BadSettingsAreRefusedWithTheReason) {
     ADD_FAILURE() << "accepted live keys out of order";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("figures[0].controllers[0].live"), std::string::npos)
+        << e.what();
+  }
+  // So does a key of four numbers.
+  text = scene_to_json(arm(kServo));
+  text.insert(text.find(keys), R"("live": [[0.5, 1, 0.1, 2]], )");
+  try {
+    parse_scene(text, "arm.json");
+    ADD_FAILURE() << "accepted a live key of four numbers";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("figures[0].controllers[0].live[0]"), std::string::npos)
         << e.what();
   }
 }

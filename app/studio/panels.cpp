@@ -628,12 +628,81 @@ void control_target(Studio& studio, int figure, int controller, const ControlSam
   ImGui::PopID();
 }
 
+// A jog lever beside the target (fig. 15.11's crawler and winch levers): held at a speed, the
+// target moves at that speed from wherever the controller's desired position is (ControlSet's
+// from_desired); released, the lever springs back to 0 and the target stops where it is. The
+// whole hold is one undo step.
+void control_jog(Studio& studio, int figure, int controller, const ControlSample& now) {
+  const bool active = studio.jog_figure == figure && studio.jog_index == controller;
+  double rate = active ? studio.jog_rate : 0.0;
+  const double speed = 0.002 * std::max(std::abs(now.desired), 1.0);
+  ImGui::PushID(figure * 4096 + controller + 2048);
+  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.6f);
+  const bool changed = ImGui::DragScalar("jog /s", ImGuiDataType_Double, &rate,
+                                         static_cast<float>(speed), nullptr, nullptr, "%+.4f");
+  if (ImGui::IsItemActivated() && studio.status.scene) {
+    studio.jog_figure = figure;
+    studio.jog_index = controller;
+    studio.jog_rate = 0;
+    studio.control_scene_before = nlohmann::json::parse(scene_to_json(*studio.status.scene));
+  }
+  if (changed && studio.runner) {
+    studio.jog_rate = rate;
+    studio.runner->post(ControlSet{figure, controller, 0, rate, true});
+  }
+  if (ImGui::IsItemDeactivated() && active) {
+    if (studio.runner && studio.jog_rate != 0) {
+      studio.runner->post(ControlSet{figure, controller, 0, 0, true});
+    }
+    if (ImGui::IsItemDeactivatedAfterEdit() && !studio.control_scene_before.is_null()) {
+      studio.history.push({"", std::move(studio.control_scene_before), nullptr, "jog"});
+    }
+    studio.control_scene_before = nullptr;
+    studio.jog_figure = studio.jog_index = -1;
+    studio.jog_rate = 0;
+  }
+  ImGui::PopID();
+}
+
 // The controlled DOFs' trajectories over the last seconds (figs. 15.7, 15.8): desired (white),
 // the MRAC reference model (yellow; the desired for PD servos) and actual (cyan), with the
 // actuator's output and whether it is at its limit.
+// The keyboard lever (the crane's levers without a mouse): while Page Up or Page Down is held and
+// no text field takes the keys, the chosen controller jogs at +-lever_speed from its desired
+// position; on release it stops there. Posted only when the keys' state changes.
+void keyboard_lever(Studio& studio, const Scene& scene) {
+  const bool valid =
+      studio.lever_figure >= 0 && studio.lever_figure < static_cast<int>(scene.figures.size()) &&
+      studio.lever_index >= 0 &&
+      studio.lever_index < static_cast<int>(scene.figures[studio.lever_figure].controllers.size());
+  const bool free_keys = !ImGui::GetIO().WantTextInput;
+  const int direction = valid && free_keys ? (ImGui::IsKeyDown(ImGuiKey_PageUp) ? 1 : 0) -
+                                                 (ImGui::IsKeyDown(ImGuiKey_PageDown) ? 1 : 0)
+                                           : 0;
+  if (direction == studio.lever_direction) return;
+  if (studio.lever_direction == 0 && studio.status.scene) {
+    studio.lever_scene_before = nlohmann::json::parse(scene_to_json(*studio.status.scene));
+  }
+  if (studio.runner && valid) {
+    studio.runner->post(ControlSet{studio.lever_figure, studio.lever_index, 0,
+                                   direction * studio.lever_speed, true});
+  }
+  if (direction == 0 && !studio.lever_scene_before.is_null()) {
+    studio.history.push({"", std::move(studio.lever_scene_before), nullptr, "lever"});
+    studio.lever_scene_before = nullptr;
+  }
+  studio.lever_direction = direction;
+}
+
 void controllers_panel(Studio& studio) {
-  ImGui::TextDisabled("drag a target to set it live (recorded as the controller's live keys)");
+  ImGui::TextDisabled(
+      "drag a target to set it, or hold its jog lever at a speed (recorded as live keys);");
+  ImGui::TextDisabled("Page Up / Page Down jog the controller marked 'keys' at the speed below");
   const Scene& scene = *studio.status.scene;
+  ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.4f);
+  ImGui::DragScalar("keyboard lever speed /s", ImGuiDataType_Double, &studio.lever_speed, 0.005f,
+                    nullptr, nullptr, "%.3f");
+  keyboard_lever(studio, scene);
   const FrameStats& f = studio.status.stats;
   int k = 0;
   for (std::size_t fi = 0; fi < scene.figures.size(); ++fi) {
@@ -645,6 +714,16 @@ void controllers_panel(Studio& studio) {
                   c.dof, name_of(kControllerKindNames, c.kind), now.output,
                   now.saturated ? ", at its limit" : "");
       control_target(studio, static_cast<int>(fi), static_cast<int>(ci), now);
+      control_jog(studio, static_cast<int>(fi), static_cast<int>(ci), now);
+      ImGui::SameLine();
+      ImGui::PushID(k);
+      if (ImGui::RadioButton("keys", studio.lever_figure == static_cast<int>(fi) &&
+                                         studio.lever_index == static_cast<int>(ci)) &&
+          studio.lever_direction == 0) {
+        studio.lever_figure = static_cast<int>(fi);
+        studio.lever_index = static_cast<int>(ci);
+      }
+      ImGui::PopID();
       const ImVec2 origin = ImGui::GetCursorScreenPos();
       const ImVec2 size(ImGui::GetContentRegionAvail().x, 70);
       ImDrawList* draw = ImGui::GetWindowDrawList();

@@ -63,6 +63,17 @@ struct Studio {
   int control_figure = -1, control_index = -1;
   double control_value = 0;
   nlohmann::json control_scene_before;
+  // The jog lever being held (figure, controller; -1: none) and its speed [/s]; it springs back
+  // to 0 when released. Its undo step shares control_scene_before (one widget at a time).
+  int jog_figure = -1, jog_index = -1;
+  double jog_rate = 0;
+  // The keyboard lever: Page Up / Page Down held jog one controller (figure, controller) at
+  // +-lever_speed; lever_direction is the keys' state last frame (-1, 0, 1), and the hold is one
+  // undo step (lever_scene_before).
+  int lever_figure = 0, lever_index = 0;
+  double lever_speed = 0.2;
+  int lever_direction = 0;
+  nlohmann::json lever_scene_before;
   int samples = 2;  // viewport MSAA: llvmpipe pays per sample
   double speed = 1.0;
   std::deque<StatsSample> plot;  // the last seconds

@@ -18,6 +18,16 @@ enum class ControllerKind {
   stable_pd,  // the same servo taken at the step's end, its gains folded into the step
 };
 
+// A target set live from the control panel (fig. 15.11's crane panel): from `time` on the desired
+// position is value + rate (t - time), the desired rate `rate` and the acceleration zero. A rate
+// of zero holds a position (a boom angle); a nonzero rate is a jog, a lever held at a speed (the
+// crane's crawlers and winch).
+struct LiveKey {
+  Real time = 0;   // [s]
+  Real value = 0;  // [rad or m]
+  Real rate = 0;   // [rad/s or m/s]
+};
+
 struct ControllerDef {
   ControllerKind kind = ControllerKind::mrac;
   std::string joint;  // the segment whose parent joint it drives
@@ -26,10 +36,9 @@ struct ControllerDef {
   Interpolation interpolation = Interpolation::smooth;
   std::vector<Keyframe> keys;
   // Targets set live during play from the studio's control panel (fig. 15.11's crane panel),
-  // recorded so that playback and the saved file repeat them: a step track that replaces `keys`
-  // from its first key's time on (each value held until the next, desired rate and acceleration
-  // zero). Empty: `keys` alone.
-  std::vector<Keyframe> live;
+  // recorded so that playback and the saved file repeat them: they replace `keys` from the first
+  // one's time on, each acting until the next (LiveKey). Empty: `keys` alone.
+  std::vector<LiveKey> live;
   // MRAC: the reference model's settling time t_s and the adaptation's alpha, beta (15.16),
   // (15.17); control/mrac.h says why these defaults.
   Real settling_time = 0.3;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 
 #include "control/joint_trajectory.h"
@@ -29,17 +30,18 @@ void pack(const MracState& m, Real* s) {
 }  // namespace
 
 DesiredMotion controller_desired(const JointController& c, Real t,
-                                 const std::optional<Keyframe>& held) {
-  if (held && held->time <= t) return {held->value, 0, 0};
-  const std::vector<Keyframe>& live = c.def.live;
-  if (!live.empty() && live.front().time <= t) {
-    return {evaluate_keys(Interpolation::step, live, t), 0, 0};
-  }
+                                 const std::optional<LiveKey>& held) {
+  if (held && held->time <= t) return live_desired(*held, t);
+  const std::vector<LiveKey>& live = c.def.live;
+  // The last live key at or before t (times strictly increase).
+  const auto after = std::upper_bound(
+      live.begin(), live.end(), t, [](Real time, const LiveKey& key) { return time < key.time; });
+  if (after != live.begin()) return live_desired(*std::prev(after), t);
   return desired_motion(c.def.interpolation, c.def.keys, t);
 }
 
 ControlSample explicit_control(const JointController& c, Real t, Real q, Real q_dot,
-                               const Real* state, Real* rate, const std::optional<Keyframe>& held) {
+                               const Real* state, Real* rate, const std::optional<LiveKey>& held) {
   const DesiredMotion d = controller_desired(c, t, held);
   ControlSample out{.desired = d.q, .reference = d.q, .actual = q};
   if (c.def.kind == ControllerKind::mrac) {

@@ -34,17 +34,22 @@ struct ControlSample {
   bool saturated = false;
 };
 
+// The desired motion a live key sets at time t >= key.time: value + rate (t - time), the rate,
+// zero acceleration.
+inline DesiredMotion live_desired(const LiveKey& key, Real t) {
+  return {key.value + key.rate * (t - key.time), key.rate, 0};
+}
+
 // The desired motion at time t: `held` (a target set live during play, sim/inputs.h's
-// ControlInput) once its time has come, else the live keys from their first key's time on (a
-// step track), else the keys. A held or live target has zero desired rate and acceleration.
+// ControlInput) once its time has come, else the last live key at or before t, else the keys.
 DesiredMotion controller_desired(const JointController& c, Real t,
-                                 const std::optional<Keyframe>& held = {});
+                                 const std::optional<LiveKey>& held = {});
 
 // The explicit laws (MRAC, PD) at time t on a DOF at (q, q_dot): the sample, and the rates of the
 // controller's state entries (state, rate: its kMracStateSize entries; unused for PD).
 ControlSample explicit_control(const JointController& c, Real t, Real q, Real q_dot,
                                const Real* state, Real* rate,
-                               const std::optional<Keyframe>& held = {});
+                               const std::optional<LiveKey>& held = {});
 
 // The state a controller starts with at (q, q_dot): MRAC's model at the DOF, integrals zero
 // (mrac_start); writes kMracStateSize entries.

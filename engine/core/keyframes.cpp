@@ -1,6 +1,9 @@
 #include "core/keyframes.h"
 
 #include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
 
 namespace pbm {
 namespace {
@@ -66,6 +69,19 @@ Real evaluate_keys_acceleration(Interpolation interpolation, const std::vector<K
   // d^2/dt^2 = (1 / h^2) d^2/dx^2 of the cubic.
   return ((12 * x - 6) * a + (6 * x - 4) * s.m0 + (-12 * x + 6) * b + (6 * x - 2) * s.m1) /
          (s.h * s.h);
+}
+
+void require_keyframes(const std::vector<Keyframe>& keys, const std::string& file,
+                       const std::string& at) {
+  if (keys.empty()) throw Error(file, at, "needs at least one [time, value] key");
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    if (!std::isfinite(keys[k].time) || !std::isfinite(keys[k].value)) {
+      throw Error(file, at + "[" + std::to_string(k) + "]", "must be finite");
+    }
+    if (k > 0 && !(keys[k].time > keys[k - 1].time)) {
+      throw Error(file, at + "[" + std::to_string(k) + "]", "times must increase strictly");
+    }
+  }
 }
 
 }  // namespace pbm

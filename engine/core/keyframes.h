@@ -3,6 +3,7 @@
 // joint trajectories and inflow rates to come).
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "core/types.h"
@@ -31,5 +32,10 @@ Real evaluate_keys_rate(Interpolation interpolation, const std::vector<Keyframe>
 // desired acceleration with it ((15.14)).
 Real evaluate_keys_acceleration(Interpolation interpolation, const std::vector<Keyframe>& keys,
                                 Real t);
+
+// Checks keys a compiled scene relies on: at least one, finite, times increasing strictly.
+// Throws pbm::Error naming `file` and `at` (the JSON path of the list; a key's own index added).
+void require_keyframes(const std::vector<Keyframe>& keys, const std::string& file,
+                       const std::string& at);
 
 }  // namespace pbm

@@ -66,18 +66,15 @@ std::vector<JointController> compile_figure_controllers(const FigureDef& def,
       }
     }
     for (std::size_t j = 0; j < d.live.size(); ++j) {
-      const bool ok = std::isfinite(d.live[j].time) && std::isfinite(d.live[j].value) &&
-                      d.live[j].time >= 0 && (j == 0 || d.live[j].time > d.live[j - 1].time);
+      const LiveKey& key = d.live[j];
+      const bool ok = std::isfinite(key.time) && std::isfinite(key.value) &&
+                      std::isfinite(key.rate) && key.time >= 0 &&
+                      (j == 0 || key.time > d.live[j - 1].time);
       require(ok, file, at + ".live[" + std::to_string(j) + "]",
-              "needs finite [time, value] with times >= 0 increasing strictly");
+              "needs finite [time, value] or [time, value, rate] with times >= 0 increasing "
+              "strictly");
     }
-    require(!d.keys.empty(), file, at + ".keys", "needs at least one key [time, value]");
-    for (std::size_t j = 0; j < d.keys.size(); ++j) {
-      const bool ok = std::isfinite(d.keys[j].time) && std::isfinite(d.keys[j].value) &&
-                      (j == 0 || d.keys[j].time > d.keys[j - 1].time);
-      require(ok, file, at + ".keys[" + std::to_string(j) + "]",
-              "must be finite, its time after the previous key's");
-    }
+    require_keyframes(d.keys, file, at + ".keys");
     if (d.max_output) {
       require(*d.max_output > 0 && std::isfinite(*d.max_output), file, at + ".max_output",
               "must be > 0 and finite");

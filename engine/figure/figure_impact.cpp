@@ -229,6 +229,8 @@ void reserve_impact_workspace(int figures, int segments, int n_v, int contacts,
     FigureWorkspace& w = ws.figures[f];
     w.X_up.reserve(n);
     w.S.reserve(n);
+    w.axis_column.reserve(n);
+    w.axis_sign.reserve(n);
     w.v.reserve(n);
     w.c.reserve(n);
     w.inertia.reserve(n);

@@ -7,22 +7,6 @@
 
 namespace pbm {
 
-namespace {
-
-void check_keys(const std::vector<Keyframe>& keys, const std::string& file, const std::string& at) {
-  if (keys.empty()) throw Error(file, at, "needs at least one [time, value] key");
-  for (std::size_t k = 0; k < keys.size(); ++k) {
-    if (!std::isfinite(keys[k].time) || !std::isfinite(keys[k].value)) {
-      throw Error(file, at + "[" + std::to_string(k) + "]", "must be finite");
-    }
-    if (k > 0 && !(keys[k].time > keys[k - 1].time)) {
-      throw Error(file, at + "[" + std::to_string(k) + "]", "times must increase strictly");
-    }
-  }
-}
-
-}  // namespace
-
 std::vector<CompiledSiteActuator> compile_site_actuators(const FigureDef& def,
                                                          const FigureModel& figure,
                                                          const std::string& file,
@@ -32,9 +16,9 @@ std::vector<CompiledSiteActuator> compile_site_actuators(const FigureDef& def,
   for (std::size_t k = 0; k < def.site_actuators.size(); ++k) {
     const SiteActuatorDef& d = def.site_actuators[k];
     const std::string at = path + ".site_actuators[" + std::to_string(k) + "]";
-    check_keys(d.x, file, at + ".x");
-    check_keys(d.y, file, at + ".y");
-    check_keys(d.z, file, at + ".z");
+    require_keyframes(d.x, file, at + ".x");
+    require_keyframes(d.y, file, at + ".y");
+    require_keyframes(d.z, file, at + ".z");
     if (!(d.stiffness > 0) || !std::isfinite(d.stiffness)) {
       throw Error(file, at + ".stiffness", "must be > 0 and finite");
     }

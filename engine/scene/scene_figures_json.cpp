@@ -22,6 +22,34 @@ constexpr std::uint32_t kHasAxis =
 constexpr std::uint32_t kUniversal = kind_bit(JointKind::universal);
 constexpr std::uint32_t kHasSpring = kHasAxis | kind_bit(JointKind::spherical);
 
+// A controller's live keys: [time, value] or [time, value, rate], times strictly increasing
+// (control/controller_def.h, LiveKey).
+std::vector<LiveKey> read_live_keys(const FieldFormat& format, const JsonNode& node) {
+  const std::size_t n = require_array(node);
+  if (n == 0) fail(node, "must have at least one key [time, value]");
+  if (static_cast<Real>(n) > format.limit) {
+    fail(node,
+         "must have at most " + bound_text(format.limit) + " keys (got " + std::to_string(n) + ")");
+  }
+  std::vector<LiveKey> keys;
+  keys.reserve(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    const JsonNode key = element(node, j);
+    if (!key.value->is_array() || key.value->size() < 2 || key.value->size() > 3) {
+      fail(key, "must be [time, value] or [time, value, rate], numbers");
+    }
+    LiveKey k{read_real(element(key, 0)), read_real(element(key, 1)), 0};
+    if (key.value->size() == 3) k.rate = read_real(element(key, 2));
+    if (!(k.time >= 0)) fail(element(key, 0), "must be >= 0");
+    if (j > 0 && !(k.time > keys.back().time)) {
+      fail(key, "time " + format_real(k.time) + " must be greater than the previous key's time " +
+                    format_real(keys.back().time));
+    }
+    keys.push_back(k);
+  }
+  return keys;
+}
+
 // A joint's q0 or v0: as many numbers as the joint has coordinates (checked when the figure is
 // compiled, which knows the kind); empty, the default, is not written.
 template <auto Member>
@@ -184,12 +212,20 @@ constexpr auto kControllerFields = std::to_array<Field<ControllerDef>>({
       .limit = kMaxTrajectoryKeys,
       .default_note = "none",
       .description = "Targets set live from the studio's control panel (fig. 15.11), recorded: "
-                     "a step track that replaces keys from its first time on."},
+                     "[time s, value] or [time s, value, rate /s] keys that replace keys from "
+                     "the first one's time on; each sets the desired position value + rate "
+                     "(t - time) until the next (a nonzero rate is a jog)."},
      [](const FieldFormat& f, const JsonNode& node, ControllerDef& def, const ReadContext&) {
-       def.live = read_keyframes(f, node);
+       def.live = read_live_keys(f, node);
      },
      [](const FieldFormat& f, const ControllerDef& def, OrderedJson& object) {
-       if (!def.live.empty()) object[f.key] = keyframes_json(def.live);
+       if (def.live.empty()) return;
+       OrderedJson keys = OrderedJson::array();
+       for (const LiveKey& key : def.live) {
+         keys.push_back(key.rate == 0 ? OrderedJson{key.time, key.value}
+                                      : OrderedJson{key.time, key.value, key.rate});
+       }
+       object[f.key] = std::move(keys);
      }},
     value<&ControllerDef::settling_time>(
         {.key = "settling_time",

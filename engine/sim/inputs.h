@@ -18,13 +18,14 @@ struct TrackInput {
 };
 
 // A joint controller's target set from the control panel (sim/runner.h, ControlSet): from `time`
-// on, the controller's desired position is `value` with zero rate, exactly as the step key the
-// runner records into its `live` keys (control/controller_def.h).
+// on, the controller's desired position is value + rate (t - time), exactly as the key the runner
+// records into its `live` keys (control/controller_def.h, LiveKey).
 struct ControlInput {
   int figure = 0;      // index into Model::figures
   int controller = 0;  // index into its controllers
   Real time = 0;
   Real value = 0;
+  Real rate = 0;
 };
 
 // A site actuator's target set by a mouse drag on a figure (sim/runner.h, SpringMove): from `time`

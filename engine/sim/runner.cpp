@@ -14,6 +14,7 @@
 #include "figure/figure_kinematics.h"
 #include "scene/scene_json.h"
 #include "scene/track_targets.h"
+#include "sim/stages_figure_control.h"
 
 namespace pbm {
 namespace {
@@ -346,20 +347,28 @@ std::string RunnerCore::handle(const ControlSet& set) {
     return "control: controller " + std::to_string(set.controller) + " of figure '" + def.name +
            "' follows its motion capture clip; map the joint out of the clip to drive it live";
   }
-  if (!std::isfinite(set.value)) return "control: the target is not finite";
-  Scene scene = *scene_;
   const Real t = state().time;
-  std::vector<Keyframe>& live = scene.figures[static_cast<std::size_t>(set.figure)]
-                                    .controllers[static_cast<std::size_t>(set.controller)]
-                                    .live;
-  record_key(live, t, set.value);
+  const auto f = static_cast<std::size_t>(set.figure);
+  const auto k = static_cast<std::size_t>(set.controller);
+  const Real value = set.from_desired
+                         ? controller_desired(model().figures[f].controllers[k], t,
+                                              stages::control_input(sim_->inputs, f, k))
+                               .q
+                         : set.value;
+  if (!std::isfinite(value)) return "control: the target is not finite";
+  if (!std::isfinite(set.rate)) return "control: the target's rate is not finite";
+  Scene scene = *scene_;
+  std::vector<LiveKey>& live = scene.figures[f].controllers[k].live;
+  std::erase_if(live, [t](const LiveKey& key) { return key.time > t; });
+  if (!live.empty() && live.back().time == t) live.pop_back();
+  live.push_back({t, value, set.rate});
   // The same key as an input of the step, acting exactly as the recorded key will once the scene
   // is compiled (sim/inputs.h): setting a target while playing compiles nothing.
   std::vector<ControlInput>& inputs = sim_->inputs.controls;
   std::erase_if(inputs, [&](const ControlInput& in) {
     return in.figure == set.figure && in.controller == set.controller;
   });
-  inputs.push_back({set.figure, set.controller, t, set.value});
+  inputs.push_back({set.figure, set.controller, t, value, set.rate});
   scene_ = std::make_shared<const Scene>(std::move(scene));
   ++revision_;
   timeline_.drop_after(frame_);

@@ -84,15 +84,19 @@ struct SpringMove {
 struct SpringEnd {};
 
 // A target set on a figure's joint controller from the control panel (fig. 15.11's crane panel):
-// recorded at the current time as a key of the controller's `live` step track
-// (control/controller_def.h), replacing later keys and the key at that time, and set as an Input
-// of the step (sim/inputs.h) that acts exactly as that key: nothing is compiled, frames after the
-// current one are dropped. Commands that re-simulate or recompile (Seek, ResetToStart, EditScene,
-// a spring's Begin) compile the recorded keys first.
+// recorded at the current time as a key of the controller's `live` track (control/controller_def.h,
+// LiveKey), replacing later keys and the key at that time, and set as an Input of the step
+// (sim/inputs.h) that acts exactly as that key: nothing is compiled, frames after the current one
+// are dropped. Commands that re-simulate or recompile (Seek, ResetToStart, EditScene, a spring's
+// Begin) compile the recorded keys first.
 struct ControlSet {
   int figure = 0;
   int controller = 0;
-  Real value = 0;
+  Real value = 0;  // the target from now on [rad or m]
+  Real rate = 0;   // and its speed: nonzero, a jog (a lever held, the crane's crawlers)
+  // A lever moved: the target continues from where the controller's desired position is now
+  // (value is ignored), so a jog neither jumps nor stops the motion it takes over.
+  bool from_desired = false;
 };
 
 using Command = std::variant<Play, Pause, StepFrame, Seek, ResetToStart, EditScene, SpringBegin,

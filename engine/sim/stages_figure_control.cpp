@@ -20,10 +20,10 @@ Real limit_of(const JointController& c) {
 
 }  // namespace
 
-std::optional<Keyframe> control_input(const Inputs& inputs, std::size_t f, std::size_t k) {
+std::optional<LiveKey> control_input(const Inputs& inputs, std::size_t f, std::size_t k) {
   for (const ControlInput& in : inputs.controls) {
     if (in.figure == static_cast<int>(f) && in.controller == static_cast<int>(k)) {
-      return Keyframe{in.time, in.value};
+      return LiveKey{in.time, in.value, in.rate};
     }
   }
   return std::nullopt;
@@ -227,7 +227,7 @@ void measure_figure_controllers(const CompiledFigure& figure, std::size_t f, con
   for (std::size_t k = 0; k < figure.controllers.size(); ++k) {
     const JointController& c = figure.controllers[k];
     const Real qi = q[c.q_index], vi = v[c.v_index];
-    const std::optional<Keyframe> held = control_input(inputs, f, k);
+    const std::optional<LiveKey> held = control_input(inputs, f, k);
     if (c.def.kind != ControllerKind::stable_pd) {
       Real rate[kMracStateSize];
       out.controllers[k] = explicit_control(c, state.time, qi, vi,

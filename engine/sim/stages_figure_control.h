@@ -46,7 +46,7 @@ void measure_figure_controllers(const CompiledFigure& figure, std::size_t f, con
                                 const State& state, FigureFrameStats& out);
 
 // The control panel's target on controller k of figure f, if one is set (sim/inputs.h).
-std::optional<Keyframe> control_input(const Inputs& inputs, std::size_t f, std::size_t k);
+std::optional<LiveKey> control_input(const Inputs& inputs, std::size_t f, std::size_t k);
 // A mouse drag's target on site actuator k of figure f, if one is set (sim/inputs.h).
 std::optional<HeldSiteTarget> site_target_input(const Inputs& inputs, std::size_t f, std::size_t k);
 

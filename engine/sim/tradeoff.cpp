@@ -110,9 +110,13 @@ void compare(const Trajectory& run, const Trajectory& ref, TradeoffPoint& point)
     // Joint angles: the rotation between the run's and the reference's parent -> segment
     // rotations, whatever the joint's coordinates (angles, a quaternion).
     for (std::size_t j = 0; j < run.joints[f].size() && j < ref.joints[f].size(); ++j) {
+      // The angle as atan2(sin, cos): sin from the skew part, |vee(R - R^T)| / 2, keeps its
+      // precision at small angles, where acos of the trace cannot resolve below ~1e-8 rad.
       const Mat3 relative = run.joints[f][j] * ref.joints[f][j].transpose();
-      const Real cosine = std::clamp((relative.trace() - 1) / 2, Real(-1), Real(1));
-      point.joint_error = std::max(point.joint_error, std::acos(cosine));
+      const Vec3 axis(relative(2, 1) - relative(1, 2), relative(0, 2) - relative(2, 0),
+                      relative(1, 0) - relative(0, 1));
+      const Real angle = std::atan2(axis.norm() / 2, (relative.trace() - 1) / 2);
+      point.joint_error = std::max(point.joint_error, angle);
     }
     if (run.nodes[f].size() == ref.nodes[f].size()) {
       node_sum += (run.nodes[f] - ref.nodes[f]).squaredNorm();
