@@ -7,9 +7,11 @@ namespace pbm {
 namespace {
 
 // E^T M E for a symmetric M: T = M E, then the upper triangle of E^T T (its (r, c) entry is
-// E.col(r) . T.col(c)), mirrored: 45 multiplications instead of 54.
-inline Mat3 rotate_symmetric(const Mat3& E, const Mat3& M) {
-  Mat3 T;
+// E.col(r) . T.col(c)), mirrored: 45 multiplications instead of 54. E may be N x 3 (N = 2: only
+// the rows of E where M has non-zero rows and columns, add_inertia_to_parent's zero_row).
+template <int N>
+Mat3 rotate_symmetric(const Eigen::Matrix<Real, N, 3>& E, const Eigen::Matrix<Real, N, N>& M) {
+  Eigen::Matrix<Real, N, 3> T;
   T.noalias() = M.lazyProduct(E);
   Mat3 out;
   for (int c = 0; c < 3; ++c) {
@@ -50,13 +52,13 @@ using Mat23 = Eigen::Matrix<Real, 2, 3>;
 // E^T B E, E^T C E), then translated.
 void add_inertia_to_parent(const SpatialTransform& X, const Mat6& I, Mat6& out, int zero_row) {
   const Mat3& E = X.E;
-  const Mat3 C = rotate_symmetric(E, I.bottomRightCorner<3, 3>());
+  const Mat3 C = rotate_symmetric<3>(E, I.bottomRightCorner<3, 3>());
   if (zero_row < 0) {
     Mat3 T;
     T.noalias() = I.topRightCorner<3, 3>().lazyProduct(E);
     Mat3 B;
     B.noalias() = E.transpose().lazyProduct(T);
-    add_translated(X.r, rotate_symmetric(E, I.topLeftCorner<3, 3>()), B, C, out);
+    add_translated(X.r, rotate_symmetric<3>(E, I.topLeftCorner<3, 3>()), B, C, out);
     return;
   }
   // Row and column k of A and row k of B are zero: only E's rows i, j take part, E^T A E =
@@ -68,15 +70,11 @@ void add_inertia_to_parent(const SpatialTransform& X, const Mat6& I, Mat6& out, 
   E2.row(1) = E.row(j);
   Eigen::Matrix<Real, 2, 2> A2;
   A2 << I(i, i), I(i, j), I(j, i), I(j, j);
-  Mat23 T;
-  T.noalias() = A2.lazyProduct(E2);
-  Mat3 A;
-  for (int c = 0; c < 3; ++c) {
-    for (int r = 0; r <= c; ++r) A(r, c) = A(c, r) = E2.col(r).dot(T.col(c));
-  }
+  const Mat3 A = rotate_symmetric<2>(E2, A2);
   Mat23 B2;
   B2.row(0) = I.block<1, 3>(i, 3);
   B2.row(1) = I.block<1, 3>(j, 3);
+  Mat23 T;
   T.noalias() = B2.lazyProduct(E);
   Mat3 B;
   B.noalias() = E2.transpose().lazyProduct(T);
