@@ -664,9 +664,6 @@ void control_jog(Studio& studio, int figure, int controller, const ControlSample
   ImGui::PopID();
 }
 
-// The controlled DOFs' trajectories over the last seconds (figs. 15.7, 15.8): desired (white),
-// the MRAC reference model (yellow; the desired for PD servos) and actual (cyan), with the
-// actuator's output and whether it is at its limit.
 // The keyboard lever (the crane's levers without a mouse): while Page Up or Page Down is held and
 // no text field takes the keys, the chosen controller jogs at +-lever_speed from its desired
 // position; on release it stops there. Posted only when the keys' state changes.
@@ -694,6 +691,10 @@ void keyboard_lever(Studio& studio, const Scene& scene) {
   studio.lever_direction = direction;
 }
 
+// The controlled DOFs' trajectories over the last seconds (figs. 15.7, 15.8): desired (white),
+// the MRAC reference model (yellow; the desired for PD servos) and actual (cyan), with the
+// actuator's output and whether it is at its limit; each with its target, jog lever and the
+// choice of the keyboard lever.
 void controllers_panel(Studio& studio) {
   ImGui::TextDisabled(
       "drag a target to set it, or hold its jog lever at a speed (recorded as live keys);");
