@@ -36,11 +36,20 @@ inline void add_translated(const Vec3& r, const Mat3& A, const Mat3& B, const Ma
   Mat3 RC;  // column k is r x c_k
   for (int k = 0; k < 3; ++k) RC.col(k) = r.cross(Vec3(C.col(k)));
   const Mat3 RCR = rows_cross(RC, r);
+  const Mat3 top_left = A - BR - BR.transpose() - RCR;
   const Mat3 top_right = B + RC;
-  out.topLeftCorner<3, 3>() += A - BR - BR.transpose() - RCR;
-  out.topRightCorner<3, 3>() += top_right;
-  out.bottomLeftCorner<3, 3>() += top_right.transpose();
-  out.bottomRightCorner<3, 3>() += C;
+  // Column by column in aligned pairs of rows (0, 1), (2, 3), (4, 5): the parent reads its
+  // columns as SSE pairs right after (a chain's next segment), and a pair written as one store
+  // forwards, where two halves from different blocks stall.
+  using Pair = Eigen::Matrix<Real, 2, 1>;
+  for (int c = 0; c < 3; ++c) {
+    out.col(c).segment<2>(0) += Pair(top_left(0, c), top_left(1, c));
+    out.col(c).segment<2>(2) += Pair(top_left(2, c), top_right(c, 0));
+    out.col(c).segment<2>(4) += Pair(top_right(c, 1), top_right(c, 2));
+    out.col(3 + c).segment<2>(0) += Pair(top_right(0, c), top_right(1, c));
+    out.col(3 + c).segment<2>(2) += Pair(top_right(2, c), C(0, c));
+    out.col(3 + c).segment<2>(4) += Pair(C(1, c), C(2, c));
+  }
 }
 
 using Mat23 = Eigen::Matrix<Real, 2, 3>;
