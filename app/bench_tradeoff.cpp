@@ -33,22 +33,24 @@ std::vector<std::string> split(const std::string& text) {
 void write_csv(const std::string& path, const TradeoffReport& report) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error(path + ": cannot write");
-  out << "integrator,dt_s,tolerance,resolution,contact,current,ok,wall_s,substeps,evaluations,"
-         "retries,"
+  out << "integrator,dt_s,tolerance,resolution,contact,stiffness,restitution,gains,settling,"
+         "current,ok,wall_s,substeps,evaluations,retries,"
          "centre_error_m,joint_error_rad,shape_error,node_rms_m,constraint_violation_m,"
-         "energy_error,pareto,"
+         "energy_error,depth_m,physics_centre_m,physics_joint_rad,pareto,"
          "message\n";
-  char line[512];
+  char line[640];
   for (const TradeoffPoint& p : report.points) {
-    std::snprintf(
-        line, sizeof line,
-        "%s,%.9g,%.3g,%g,%s,%d,%d,%.6g,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,",
-        name_of(kIntegratorKindNames, p.setting.integrator), p.setting.dt, p.setting.tolerance,
-        p.setting.resolution,
-        p.setting.contact ? name_of(kContactQuadratureNames, *p.setting.contact) : "scene",
-        p.setting.current ? 1 : 0, p.ok ? 1 : 0, p.wall_seconds, p.substeps, p.evaluations,
-        p.retries, p.centre_error, p.joint_error, p.shape_error, p.node_rms, p.constraint_violation,
-        p.energy_error, p.pareto ? 1 : 0);
+    const TradeoffSetting& s = p.setting;
+    const std::string restitution = s.restitution ? std::to_string(*s.restitution) : "scene";
+    std::snprintf(line, sizeof line,
+                  "%s,%.9g,%.3g,%g,%s,%g,%s,%g,%g,%d,%d,%.6g,%ld,%ld,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,"
+                  "%.6g,%.6g,%.6g,%.6g,%d,",
+                  name_of(kIntegratorKindNames, s.integrator), s.dt, s.tolerance, s.resolution,
+                  s.contact ? name_of(kContactQuadratureNames, *s.contact) : "scene", s.stiffness,
+                  restitution.c_str(), s.gains, s.settling, s.current ? 1 : 0, p.ok ? 1 : 0,
+                  p.wall_seconds, p.substeps, p.evaluations, p.retries, p.centre_error,
+                  p.joint_error, p.shape_error, p.node_rms, p.constraint_violation, p.energy_error,
+                  p.depth, p.physics_centre, p.physics_joint, p.pareto ? 1 : 0);
     std::string message = p.message;
     for (char& c : message) {
       if (c == ',' || c == '\n' || c == '"') c = ' ';
@@ -104,6 +106,8 @@ int run_bench_tradeoff(const TradeoffCommandOptions& o) {
   TradeoffReport report;
   try {
     scene = load_scene(o.scene);
+    // A scene without a name is named for its file (the title, the CSV's and PNG's names).
+    if (scene.name.empty()) scene.name = std::filesystem::path(o.scene).stem().string();
     if (!(o.seconds > 0)) throw Error("", "--seconds", "must be > 0");
     if (!(o.reference_tolerance > 0)) throw Error("", "--reference-tolerance", "must be > 0");
     options.seconds = o.seconds;
@@ -130,22 +134,34 @@ int run_bench_tradeoff(const TradeoffCommandOptions& o) {
     spdlog::error("{}", e.what());
     return 1;
   }
-  std::printf("bench tradeoff: '%s', %g s per run; reference %s: %.3f s of wall time\n",
+  std::printf("bench tradeoff: '%s', %g s per run; reference %s: %.3f s of wall time%s\n",
               scene.name.c_str(), o.seconds, report.reference.label().c_str(),
-              report.reference_wall_seconds);
-  std::printf("%-34s %9s %9s %10s %10s %11s %10s %11s %10s %7s\n", "setting", "wall s", "substeps",
-              "centre m", "joint rad", "q_s", "nodes rms", "violation m", "energy", "front");
+              report.reference_wall_seconds,
+              report.references > 1 ? " (all references: one per physics setting)" : "");
+  // The physics columns only where a physics knob is swept: most sweeps have none.
+  const bool physics = report.references > 1;
+  std::printf("%-44s %9s %9s %10s %10s %11s %10s %11s %10s %10s", "setting", "wall s", "substeps",
+              "centre m", "joint rad", "q_s", "nodes rms", "violation m", "energy", "depth m");
+  if (physics) std::printf(" %10s %10s", "physics m", "phys rad");
+  std::printf(" %7s\n", "front");
   for (const TradeoffPoint& p : report.points) {
     const std::string label = p.setting.label() + (p.setting.current ? " *" : "");
     if (!p.ok) {
-      std::printf("%-34s failed: %s\n", label.c_str(), p.message.c_str());
+      std::printf("%-44s failed: %s\n", label.c_str(), p.message.c_str());
       continue;
     }
-    std::printf("%-34s %9.4f %9ld %10.3e %10.3e %11.3e %10.3e %11.3e %10.3e %7s\n", label.c_str(),
+    std::printf("%-44s %9.4f %9ld %10.3e %10.3e %11.3e %10.3e %11.3e %10.3e %10.3e", label.c_str(),
                 p.wall_seconds, p.substeps, p.centre_error, p.joint_error, p.shape_error,
-                p.node_rms, p.constraint_violation, p.energy_error, p.pareto ? "yes" : "");
+                p.node_rms, p.constraint_violation, p.energy_error, p.depth);
+    if (physics) std::printf(" %10.3e %10.3e", p.physics_centre, p.physics_joint);
+    std::printf(" %7s\n", p.pareto ? "yes" : "");
   }
   std::printf("* the scene's own setting; nodes rms -1: another node count than the reference\n");
+  if (physics) {
+    std::printf(
+        "errors against the reference of the point's own physics; physics m, phys rad: how far "
+        "that reference lies from the scene's own (what the knob changes)\n");
+  }
   const std::filesystem::path folder(o.out);
   const std::string stem = (folder / (scene.name + "-tradeoff")).string();
   try {

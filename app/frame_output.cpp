@@ -116,11 +116,9 @@ std::string frame_stats_json(const World& world, const FrameStats& s, long frame
     for (std::size_t f = 0; f < s.figures.size(); ++f) {
       const FigureFrameStats& fs = s.figures[f];
       const CompiledFigure& compiled = model.figures[f];
-      nlohmann::json figure = {{"name", compiled.model.name},
-                               {"kinetic_energy", fs.kinetic},
-                               {"potential_energy", fs.potential},
-                               {"elastic_energy", fs.elastic},
-                               {"contacts", fs.contacts}};
+      nlohmann::json figure = {{"name", compiled.model.name},      {"kinetic_energy", fs.kinetic},
+                               {"potential_energy", fs.potential}, {"elastic_energy", fs.elastic},
+                               {"contacts", fs.contacts},          {"contact_depth", fs.depth}};
       // The controllers' plot of figs. 15.7, 15.8: desired, reference model and actual position
       // per controlled DOF, with the actuator's output.
       if (compiled.n_control > 0) figure["actuator_work"] = fs.work;

@@ -157,5 +157,37 @@ TEST(StudioSmoke, TheTradePanelMeasuresTheSceneAndAppliesAPointOfItsFront) {
   EXPECT_DOUBLE_EQ(t["shape_inertia_time"].get<double>(), 0.031);
 }
 
+// The keyboard lever of the Controllers panel, held as a user holds Page Up: the jog starts from
+// the controller's desired position (0.1 rad, its one key), records [t0, 0.1, speed] and, at the
+// release, [t1, 0.1 + speed (t1 - t0), 0], and the hold is one undo step. (This test found Page
+// Up jogging down: ImGui 1.86's IsKeyDown takes a key index, not an ImGuiKey.)
+TEST(StudioSmoke, PageUpJogsTheKeyboardLeversControllerAndRecordsIt) {
+  const fs::path file = fs::path(PBM_BINARY_DIR) / "tests/smoke/lever-arm.json";
+  fs::create_directories(file.parent_path());
+  std::ofstream(file) << R"({"name": "lever-arm", "solver": {"dt": 0.001, "fps": 30},
+      "figures": [{"name": "arm", "segments": [{"name": "arm", "joint": {"axis": [0, 1, 0]},
+        "shape": {"kind": "capsule", "size": [0.04, 0.04, 0.2], "center": [0, 0, -0.25]}}],
+      "controllers": [{"kind": "stable_pd", "joint": "arm", "kp": 200, "kd": 20,
+                       "keys": [[0, 0.1]]}]}]})";
+  const SmokeResult r = smoke("lever", "--keys 6:18", file.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const nlohmann::json& live = r.report["figures"][0]["live"][0];
+  std::printf("keyboard lever: live keys %s, undo '%s'\n", live.dump().c_str(),
+              r.report["undo"].get<std::string>().c_str());
+  ASSERT_EQ(live.size(), 2u);
+  const double speed = 0.2;  // the panel's default keyboard lever speed [/s]
+  const double t0 = live[0][0], t1 = live[1][0];
+  // Pressed once frame 6 is shown: the jog starts at that frame or the next (the panel reads
+  // the key at its next draw), and lasts the 12 frames the key is held.
+  EXPECT_GE(t0, 6.0 / 30 - 1e-9);
+  EXPECT_LE(t0, 7.0 / 30 + 1e-9);
+  EXPECT_NEAR(t1 - t0, 12.0 / 30, 1e-9);
+  EXPECT_NEAR(live[0][1].get<double>(), 0.1, 1e-12);
+  EXPECT_NEAR(live[0][2].get<double>(), speed, 1e-12);
+  EXPECT_NEAR(live[1][1].get<double>(), 0.1 + speed * (t1 - t0), 1e-9);
+  EXPECT_EQ(live[1][2].get<double>(), 0.0);
+  EXPECT_EQ(r.report["undo"], "lever");
+}
+
 }  // namespace
 }  // namespace pbm

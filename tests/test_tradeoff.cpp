@@ -92,6 +92,64 @@ TEST(Tradeoff, AFiguresSegmentsConvergeAsTheIntegratorsOrderSays) {
   EXPECT_NEAR(rk4_joint_order, 4.0, 0.5);
 }
 
+// The contact stiffness knob: a box let down onto the ground on its four bottom corners sinks
+// like a mass-spring-damper, m/4 on each corner's spring k and damper c. The knob scales k by f
+// and c by sqrt(f), so the damping ratio zeta = c / (2 sqrt(k m/4)) = 0.5 stays and the deepest
+// sink is the static one, m g / (4 k f), times 1 + exp(-pi zeta / sqrt(1 - zeta^2)). Each
+// stiffness has its own converged reference, and its answer's distance from the scene's lies
+// between the settled sinks' difference and the deeper peak.
+TEST(Tradeoff, AStifferContactSinksLessAsTheSpringLawSaysAgainstItsOwnReference) {
+  const Scene scene = parse_scene(
+      R"({"solver": {"dt": 0.0005, "fps": 1000, "integrator": "rk4"},
+          "obstacles": [{"name": "ground", "kind": "plane", "point": [0, 0, 0],
+                         "normal": [0, 0, 1], "size": [5, 5]}],
+          "figures": [{"impact_speed": 10, "contact_stiffness": 20000, "contact_damping": 200,
+            "segments": [{"name": "box", "joint": {"kind": "free", "q0": [0, 0, 0.1, 1, 0, 0, 0]},
+              "shape": {"kind": "box", "size": [0.1, 0.1, 0.1]}, "density": 1000}]}]})",
+      "box.json");
+  TradeoffOptions options;
+  options.seconds = 0.15;  // the sink's decay time 1 / (zeta omega) is 40 ms at the softest
+  options.reference_tolerance = 1e-11;
+  options.knobs.dt = {0.0005};
+  options.knobs.integrators = {IntegratorKind::rk4};
+  options.knobs.tolerances = {1e-6};
+  options.knobs.resolutions = {1.0};
+  options.knobs.stiffness = {0.25, 1.0, 4.0};
+  auto progress = [](int, int, const std::string&) {};
+  const TradeoffReport r = run_tradeoff(scene, options, progress);
+  ASSERT_EQ(r.references, 3);
+  ASSERT_EQ(r.points.size(), 3u);
+  const Real m = 8, g = 9.81, k = 2e4, zeta = 200 / (2 * std::sqrt(k * m / 4));
+  ASSERT_NEAR(zeta, 0.5, 1e-12);
+  const Real overshoot = 1 + std::exp(-std::numbers::pi * zeta / std::sqrt(1 - zeta * zeta));
+  const Real settled = m * g / (4 * k);  // the scene's own
+  for (const TradeoffPoint& p : r.points) {
+    ASSERT_TRUE(p.ok) << p.message;
+    const Real f = p.setting.stiffness;
+    std::printf(
+        "contact stiffness %gx: deepest %.6e m (spring law %.6e), rk4 error %.3e m, "
+        "answer off the scene's by %.3e m\n",
+        f, p.depth, overshoot * settled / f, p.centre_error, p.physics_centre);
+    EXPECT_NEAR(p.depth, overshoot * settled / f, 0.01 * settled / f);
+    // Against its own reference, RK4 at 0.5 ms is far inside the scene's sink. (The contact's
+    // onset at t = 0, a kink in the force, keeps RK4 at second order here: 2.2e-7 m.)
+    EXPECT_LT(p.centre_error, 1e-3 * settled);
+    if (f == 1) {
+      EXPECT_TRUE(p.setting.current);
+      EXPECT_EQ(p.physics_centre, 0);
+      EXPECT_EQ(p.physics_joint, 0);
+    } else {
+      EXPECT_FALSE(p.setting.current);
+      // The softer and the stiffer of this run and the scene's: their settled sinks.
+      const Real soft = settled / std::min(f, 1.0), stiff = settled / std::max(f, 1.0);
+      EXPECT_GT(p.physics_centre, (soft - stiff) * 0.999);
+      // The stiffer one may be up to 10% below its settled sink when the softer peaks.
+      EXPECT_LT(p.physics_centre, overshoot * soft - 0.9 * stiff);
+      EXPECT_NE(p.setting.label().find("k "), std::string::npos);
+    }
+  }
+}
+
 TEST(Tradeoff, ErrorsFollowTheIntegratorsOrderAndCostCountsTheSubsteps) {
   const Scene scene = spinning_ball();
   TradeoffOptions options;
@@ -217,7 +275,10 @@ TEST(Tradeoff, KnobsAroundTheScenesSetting) {
   EXPECT_EQ(default_knobs(scene, {"resolution"}, notes).resolutions,
             (std::vector<Real>{0.5, 1.0, 2.0}));
   EXPECT_TRUE(notes.empty());
-  TradeoffSetting twice{0.01, IntegratorKind::euler, 1e-6, 2.0, false, std::nullopt};
+  TradeoffSetting twice;
+  twice.dt = 0.01;
+  twice.tolerance = 1e-6;
+  twice.resolution = 2.0;
   const Scene refined = apply_setting(scene, twice);
   EXPECT_EQ(refined.bodies[0].tessellation.rings, 16);
   EXPECT_EQ(refined.bodies[0].tessellation.segments, 16);
@@ -228,8 +289,10 @@ TEST(Tradeoff, KnobsAroundTheScenesSetting) {
   const TradeoffKnobs rules = default_knobs(scene, {"contact"}, notes);
   ASSERT_EQ(rules.contacts.size(), 2u);
   EXPECT_EQ(rules.contacts[1], ContactQuadrature::centroid);
-  TradeoffSetting coarse{0.01,  IntegratorKind::euler,      1e-6, 1.0,
-                         false, ContactQuadrature::centroid};
+  TradeoffSetting coarse;
+  coarse.dt = 0.01;
+  coarse.tolerance = 1e-6;
+  coarse.contact = ContactQuadrature::centroid;
   EXPECT_NE(coarse.label().find("centroid"), std::string::npos);
   const Model three = build_model(scene);
   const Model one = build_model(apply_setting(scene, coarse));
@@ -243,6 +306,74 @@ TEST(Tradeoff, KnobsAroundTheScenesSetting) {
   EXPECT_EQ(default_knobs(rigid, {"contact"}, notes).contacts.size(), 1u);
   ASSERT_EQ(notes.size(), 1u);
   EXPECT_NE(notes[0].find("contact left out"), std::string::npos);
+}
+
+// The figures' physics knobs: around the scene's values, left out with a note where nothing
+// has what they act on, and applied as their comments say (dampers by the square root).
+TEST(Tradeoff, TheFiguresPhysicsKnobs) {
+  Scene scene = parse_scene(
+      R"({"figures": [{"restitution": 0.5, "segments": [{"name": "arm",
+          "joint": {"axis": [0, 1, 0]},
+          "shape": {"kind": "capsule", "size": [0.04, 0.04, 0.2], "center": [0, 0, -0.25]}}]}]})",
+      "arm.json");
+  std::vector<std::string> notes;
+  TradeoffKnobs knobs =
+      default_knobs(scene, {"stiffness", "restitution", "gains", "settling"}, notes);
+  EXPECT_EQ(knobs.stiffness, (std::vector<Real>{0.25, 1.0, 4.0}));
+  // The scene's own e (0.5) first, then the usual ones it does not have.
+  EXPECT_EQ(knobs.restitution, (std::vector<std::optional<Real>>{std::nullopt, 0.0, 1.0}));
+  EXPECT_TRUE(knobs.gains.empty());
+  EXPECT_TRUE(knobs.settling.empty());
+  ASSERT_EQ(notes.size(), 2u);
+  EXPECT_NE(notes[0].find("gains left out"), std::string::npos);
+  EXPECT_NE(notes[1].find("settling left out"), std::string::npos);
+
+  ControllerDef pd;
+  pd.kind = ControllerKind::stable_pd;
+  pd.joint = "arm";
+  pd.kp = 100;
+  pd.kd = 10;
+  pd.keys = {{0, 0.1}};
+  ControllerDef mrac = pd;
+  mrac.kind = ControllerKind::mrac;
+  scene.figures[0].controllers = {pd};
+  notes.clear();
+  knobs = default_knobs(scene, {"gains", "settling"}, notes);
+  EXPECT_EQ(knobs.gains, (std::vector<Real>{0.5, 1.0, 2.0}));
+  EXPECT_TRUE(knobs.settling.empty());  // t_s is MRAC's
+  ASSERT_EQ(notes.size(), 1u);
+  scene.figures[0].controllers = {pd, mrac};
+  notes.clear();
+  knobs = default_knobs(scene, {"settling"}, notes);
+  EXPECT_EQ(knobs.settling, (std::vector<Real>{0.5, 1.0, 2.0}));
+  EXPECT_TRUE(notes.empty());
+
+  TradeoffSetting s;
+  s.stiffness = 4;
+  s.restitution = 1;
+  s.gains = 9;
+  s.settling = 0.5;
+  EXPECT_FALSE(s.scenes_physics());
+  EXPECT_TRUE(TradeoffSetting{}.scenes_physics());
+  const Scene changed = apply_setting(scene, s);
+  const FigureDef& a = scene.figures[0];
+  const FigureDef& b = changed.figures[0];
+  EXPECT_EQ(b.contact_stiffness, 4 * a.contact_stiffness);
+  EXPECT_EQ(b.contact_damping, 2 * a.contact_damping);
+  EXPECT_EQ(b.restitution, 1);
+  EXPECT_EQ(b.controllers[0].kp, 900);
+  EXPECT_EQ(b.controllers[0].kd, 30);
+  EXPECT_EQ(b.controllers[1].alpha, 9 * a.controllers[1].alpha);
+  EXPECT_EQ(b.controllers[1].beta, 9 * a.controllers[1].beta);
+  EXPECT_EQ(b.controllers[1].settling_time, 0.5 * a.controllers[1].settling_time);
+  EXPECT_EQ(s.label(), "euler dt 0 res 1x k 4x e 1 gains 9x t_s 0.5x");
+
+  // Without figures, each is left out with a note.
+  notes.clear();
+  knobs = default_knobs(spinning_ball(), {"stiffness", "restitution", "gains", "settling"}, notes);
+  EXPECT_TRUE(knobs.stiffness.empty() && knobs.restitution.empty() && knobs.gains.empty() &&
+              knobs.settling.empty());
+  EXPECT_EQ(notes.size(), 4u);
 }
 
 TEST(Tradeoff, PlotDrawsItsPointsFrontAndHighlight) {

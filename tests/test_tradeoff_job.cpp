@@ -61,7 +61,11 @@ TEST(TradeoffJob, ApplyingAPointSetsTheSolverAndMesh) {
   Scene scene = ball_scene();
   scene.bodies[0].material.nodal_mass = 0;
   scene.bodies[0].material.mass = 10;
-  const TradeoffSetting point{0.0025, IntegratorKind::implicit, 1e-6, 2.0, false, std::nullopt};
+  TradeoffSetting point;
+  point.dt = 0.0025;
+  point.integrator = IntegratorKind::implicit;
+  point.tolerance = 1e-6;
+  point.resolution = 2.0;
   const Scene applied = parse_scene(scene_with_setting(scene, point).dump(), "applied");
   EXPECT_EQ(applied.solver.dt, 0.0025);
   EXPECT_EQ(applied.solver.integrator, IntegratorKind::implicit);

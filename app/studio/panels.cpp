@@ -436,9 +436,11 @@ void tradeoff_plot(Studio::Tradeoff& t) {
   if (hovered >= 0 && ImGui::IsItemHovered()) {
     const TradeoffPoint& p = r.points[hovered];
     ImGui::SetTooltip(
-        "%s\nwall %.4f s, %ld substeps\ncentre %.3g m, q_s %.3g\nnodes rms %.3g m, energy %.3g",
-        p.setting.label().c_str(), p.wall_seconds, p.substeps, p.centre_error, p.shape_error,
-        p.node_rms, p.energy_error);
+        "%s\nwall %.4f s, %ld substeps\ncentre %.3g m, joints %.3g rad, q_s %.3g\nnodes rms %.3g "
+        "m, energy %.3g, deepest contact %.3g m\nits physics' answer off the scene's: %.3g m, "
+        "%.3g rad",
+        p.setting.label().c_str(), p.wall_seconds, p.substeps, p.centre_error, p.joint_error,
+        p.shape_error, p.node_rms, p.energy_error, p.depth, p.physics_centre, p.physics_joint);
     if (ImGui::IsItemClicked()) t.selected = hovered;
   }
   for (IntegratorKind k : {IntegratorKind::euler, IntegratorKind::rk4, IntegratorKind::implicit,
@@ -473,6 +475,18 @@ void tradeoff_panel(Studio& studio, StudioActions& actions) {
   ImGui::Checkbox("resolution", &t.resolution);
   ImGui::SameLine();
   ImGui::Checkbox("contact", &t.contact);
+  // The figures' physics knobs: each changes the answer, so each setting has its own reference.
+  if (studio.status.scene && !studio.status.scene->figures.empty()) {
+    ImGui::TextDisabled("figures:");
+    ImGui::SameLine();
+    ImGui::Checkbox("stiffness", &t.stiffness);
+    ImGui::SameLine();
+    ImGui::Checkbox("restitution", &t.restitution);
+    ImGui::SameLine();
+    ImGui::Checkbox("gains", &t.gains);
+    ImGui::SameLine();
+    ImGui::Checkbox("settling", &t.settling);
+  }
   if (p.running) {
     const float fraction = p.total > 0 ? static_cast<float>(p.done) / p.total : 0.0f;
     ImGui::ProgressBar(fraction, ImVec2(-80, 0), p.label.c_str());
@@ -486,6 +500,12 @@ void tradeoff_panel(Studio& studio, StudioActions& actions) {
       if (t.tolerance) knobs.push_back("tolerance");
       if (t.resolution) knobs.push_back("resolution");
       if (t.contact) knobs.push_back("contact");
+      if (studio.status.scene && !studio.status.scene->figures.empty()) {
+        if (t.stiffness) knobs.push_back("stiffness");
+        if (t.restitution) knobs.push_back("restitution");
+        if (t.gains) knobs.push_back("gains");
+        if (t.settling) knobs.push_back("settling");
+      }
       t.revision = studio.status.scene_revision;
       t.job->start(*studio.status.scene, knobs, t.seconds);
     }
@@ -519,6 +539,10 @@ void tradeoff_panel(Studio& studio, StudioActions& actions) {
     ImGui::Text("%s%s: %.4f s, centre %.3g m%s", q.setting.label().c_str(),
                 q.setting.current ? " (scene's)" : "", q.wall_seconds, q.centre_error,
                 q.pareto ? "" : " (off the front)");
+    if (!q.setting.scenes_physics()) {
+      ImGui::SameLine();
+      ImGui::TextDisabled("(other physics: %.3g m off the scene's answer)", q.physics_centre);
+    }
     ImGui::PopID();
   }
 }
@@ -673,9 +697,10 @@ void keyboard_lever(Studio& studio, const Scene& scene) {
       studio.lever_index >= 0 &&
       studio.lever_index < static_cast<int>(scene.figures[studio.lever_figure].controllers.size());
   const bool free_keys = !ImGui::GetIO().WantTextInput;
-  const int direction = valid && free_keys ? (ImGui::IsKeyDown(ImGuiKey_PageUp) ? 1 : 0) -
-                                                 (ImGui::IsKeyDown(ImGuiKey_PageDown) ? 1 : 0)
-                                           : 0;
+  // ImGui 1.86's IsKeyDown takes the application's key index (io.KeyMap, viewport.cpp), not an
+  // ImGuiKey: passed ImGuiKey_PageUp it read the Down arrow's slot and Page Down's as Page Up.
+  const auto down = [](ImGuiKey key) { return ImGui::IsKeyDown(ImGui::GetKeyIndex(key)) ? 1 : 0; };
+  const int direction = valid && free_keys ? down(ImGuiKey_PageUp) - down(ImGuiKey_PageDown) : 0;
   if (direction == studio.lever_direction) return;
   if (studio.lever_direction == 0 && studio.status.scene) {
     studio.lever_scene_before = nlohmann::json::parse(scene_to_json(*studio.status.scene));

@@ -87,6 +87,8 @@ struct Studio {
     std::uint64_t revision = 0;  // scene revision the report measured
     float seconds = 2;
     bool dt = true, integrator = true, tolerance = false, resolution = true, contact = false;
+    // The figures' physics knobs (sim/tradeoff.h): each setting gets a reference of its own.
+    bool stiffness = false, restitution = false, gains = false, settling = false;
     int selected = -1;  // point under the last click
   } tradeoff;
   bool dirty() const { return status.scene_revision != saved_revision; }

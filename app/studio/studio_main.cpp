@@ -27,13 +27,17 @@ struct SmokeOptions {
   // integrator, T s per run) in the background, applies the front's most accurate point, and
   // the report says what it found and what the scene's solver became.
   double tradeoff_seconds = 0;
+  // --keys F0:F1: Page Up held from frame F0 to frame F1, the keyboard lever of the Controllers
+  // panel (its first controller unless chosen); the report lists every controller's live keys.
+  std::optional<std::pair<int, int>> keys;
 };
 
 int usage(const char* why) {
   std::cerr << "error: " << why
             << "\nusage: pbm-studio [scene.json]\n"
                "       pbm-studio --smoke <scene.json> --frames N [--drag x0,y0:x1,y1] "
-               "[--overlays] [--tradeoff SECONDS] --screenshot out.png [--report out.json]\n";
+               "[--overlays] [--tradeoff SECONDS] [--keys F0:F1] --screenshot out.png "
+               "[--report out.json]\n";
   return 2;
 }
 
@@ -55,6 +59,11 @@ class SmokeRun : public QObject {
     QMouseEvent event(type, local, viewport->mapToGlobal(local), button, buttons,
                       Qt::ControlModifier);
     QApplication::sendEvent(viewport, &event);
+  }
+
+  void send_key(QEvent::Type type, int key) {
+    QKeyEvent event(type, key, Qt::NoModifier);
+    QApplication::sendEvent(window_.viewport(), &event);
   }
 
   void tick() {
@@ -87,6 +96,13 @@ class SmokeRun : public QObject {
         send(QEvent::MouseMove, d.p2(), Qt::NoButton, Qt::LeftButton);
         send(QEvent::MouseButtonRelease, d.p2(), Qt::LeftButton, Qt::NoButton);
       }
+    }
+    // The keyboard lever: the panel sees the key at the repaint below and posts the jog before
+    // the frame's step, as when a user holds the key.
+    if (options_.keys && requested_ == options_.keys->first) {
+      send_key(QEvent::KeyPress, Qt::Key_PageUp);
+    } else if (options_.keys && requested_ == options_.keys->second) {
+      send_key(QEvent::KeyRelease, Qt::Key_PageUp);
     }
     window_.viewport()->repaint();
     studio.runner->post(pbm::StepFrame{});
@@ -174,10 +190,20 @@ class SmokeRun : public QObject {
         const pbm::Scene& scene = *window_.studio().status.scene;
         report["figures"] = nlohmann::json::array();
         for (const pbm::FigureDef& figure : scene.figures) {
+          nlohmann::json live = nlohmann::json::array();
+          for (const pbm::ControllerDef& c : figure.controllers) {
+            nlohmann::json keys = nlohmann::json::array();
+            for (const pbm::LiveKey& k : c.live) keys.push_back({k.time, k.value, k.rate});
+            live.push_back(keys);
+          }
           report["figures"].push_back({{"name", figure.name},
                                        {"site_actuators", figure.site_actuators.size()},
+                                       {"live", live},
                                        {"segments", nlohmann::json::array()}});
         }
+        report["fps"] = scene.solver.fps;
+        const pbm::SceneEdit* last = window_.studio().history.next_undo();
+        report["undo"] = last ? last->label : "";
         for (const pbm::draw::Primitive& p : snap->primitives) {
           if (p.figure < 0 || p.figure >= static_cast<int>(report["figures"].size())) continue;
           report["figures"][p.figure]["segments"].push_back(
@@ -262,6 +288,14 @@ int main(int argc, char** argv) {
       bool ok = false;
       smoke->tradeoff_seconds = v ? v->toDouble(&ok) : 0;
       if (!ok || !(smoke->tradeoff_seconds > 0)) return usage("--tradeoff needs seconds > 0");
+    } else if (a == "--keys" && smoke) {
+      auto v = value("keys");
+      const QStringList ends = v ? v->split(':') : QStringList();
+      bool ok0 = false, ok1 = false;
+      const int f0 = ends.size() == 2 ? ends[0].toInt(&ok0) : 0;
+      const int f1 = ends.size() == 2 ? ends[1].toInt(&ok1) : 0;
+      if (!ok0 || !ok1 || f0 < 0 || f1 <= f0) return usage("--keys needs frames F0:F1, F0 < F1");
+      smoke->keys = std::make_pair(f0, f1);
     } else if (a == "--overlays" && smoke) {
       smoke->overlays = true;
     } else if (a == "--screenshot" && smoke) {

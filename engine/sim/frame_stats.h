@@ -27,7 +27,8 @@ struct FigureFrameStats {
   Real kinetic = 0, potential = 0;  // [J]; potential: gravity's
   Real elastic = 0;                 // the joint springs' and the contact springs' [J]
   Real work = 0;                    // the work its actuators have done since the start [J]
-  int contacts = 0;                 // contact points touching an obstacle
+  int contacts = 0;                 // contact points touching an obstacle or another segment
+  Real depth = 0;                   // the deepest of them [m]: a penalty contact's error
   // Each controller of CompiledFigure::controllers at the measured state (figs. 15.7, 15.8).
   std::vector<ControlSample> controllers;
   // Each site actuator of CompiledFigure::site_actuators at the measured state.

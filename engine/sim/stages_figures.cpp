@@ -504,6 +504,7 @@ void measure_figures(const Model& model, const Inputs& inputs, const State& stat
     out.elastic = joint_spring_energy(figure, q_of(figure, state.q)) +
                   joint_limit_energy(model.figures[f].limits, q_of(figure, state.q));
     out.contacts = 0;
+    out.depth = 0;
     measure_figure_controllers(model.figures[f], f, inputs, state, out);
     out.site_actuators.resize(model.figures[f].site_actuators.size());
     for (std::size_t k = 0; k < out.site_actuators.size(); ++k) {
@@ -516,6 +517,7 @@ void measure_figures(const Model& model, const Inputs& inputs, const State& stat
     for_each_contact(figure, def, w, fw.world, ws.drive.obstacles,
                      [&](int, const ContactPoint& contact, const ObstacleModel&) {
                        out.elastic += 0.5 * def.contact_stiffness * contact.depth * contact.depth;
+                       out.depth = std::max(out.depth, contact.depth);
                        ++out.contacts;
                      });
   }
@@ -527,6 +529,9 @@ void measure_figures(const Model& model, const Inputs& inputs, const State& stat
     const PairContactSettings s =
         pair_contact_settings(model.scene.figures[k.figure_a], model.scene.figures[k.figure_b]);
     stats.figures[k.figure_a].elastic += 0.5 * s.stiffness * k.depth * k.depth;
+    for (const int f : {k.figure_a, k.figure_b}) {
+      stats.figures[f].depth = std::max(stats.figures[f].depth, k.depth);
+    }
     ++stats.figures[k.figure_a].contacts;
     if (k.figure_b != k.figure_a) ++stats.figures[k.figure_b].contacts;
   }

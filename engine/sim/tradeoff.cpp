@@ -20,6 +20,7 @@ struct Trajectory {
   std::vector<Real> total_energy;          // [frame]
   Real largest_energy = 0;                 // kinetic + elastic over frames
   Real violation = 0;
+  Real depth = 0;  // the deepest contact over the frames [m]
   double wall_seconds = 0;
   long substeps = 0, evaluations = 0, retries = 0;
   bool ok = true;
@@ -44,6 +45,8 @@ Trajectory record(const Scene& scene, Real seconds, const std::atomic<bool>* can
       t.evaluations += s.evaluations;
       t.retries += s.retries;
       t.violation = std::max(t.violation, s.constraint_violation);
+      if (s.min_distance < 1e299) t.depth = std::max(t.depth, -s.min_distance);
+      for (const FigureFrameStats& figure : s.figures) t.depth = std::max(t.depth, figure.depth);
       t.total_energy.push_back(s.kinetic + s.elastic + s.potential);
       t.largest_energy = std::max(t.largest_energy, s.kinetic + s.elastic);
       std::vector<Vec3> centres;
@@ -142,7 +145,32 @@ std::string TradeoffSetting::label() const {
   }
   std::string label = text;
   if (contact) label += std::string(" ") + name_of(kContactQuadratureNames, *contact);
+  if (stiffness != 1) {
+    std::snprintf(text, sizeof text, " k %gx", stiffness);
+    label += text;
+  }
+  if (restitution) {
+    std::snprintf(text, sizeof text, " e %g", *restitution);
+    label += text;
+  }
+  if (gains != 1) {
+    std::snprintf(text, sizeof text, " gains %gx", gains);
+    label += text;
+  }
+  if (settling != 1) {
+    std::snprintf(text, sizeof text, " t_s %gx", settling);
+    label += text;
+  }
   return label;
+}
+
+bool TradeoffSetting::same_physics(const TradeoffSetting& other) const {
+  return stiffness == other.stiffness && restitution == other.restitution && gains == other.gains &&
+         settling == other.settling;
+}
+
+bool TradeoffSetting::scenes_physics() const {
+  return same_physics(TradeoffSetting{});
 }
 
 TradeoffKnobs default_knobs(const Scene& scene, const std::vector<std::string>& names,
@@ -190,9 +218,50 @@ TradeoffKnobs default_knobs(const Scene& scene, const std::vector<std::string>& 
       } else {
         notes.push_back("contact left out: no body is local, so none has contact points");
       }
+    } else if (name == "stiffness") {
+      if (scene.figures.empty()) {
+        notes.push_back("stiffness left out: no figure (it sets the figures' contact springs)");
+      } else {
+        knobs.stiffness = {0.25, 1.0, 4.0};
+      }
+    } else if (name == "restitution") {
+      if (scene.figures.empty()) {
+        notes.push_back("restitution left out: no figure (it sets the figures' impacts' e)");
+      } else {
+        // The scene's own, then the usual three that differ from it.
+        knobs.restitution = {std::nullopt};
+        for (Real e : {0.0, 0.5, 1.0}) {
+          bool scenes = true;
+          for (const FigureDef& figure : scene.figures) scenes &= figure.restitution == e;
+          if (!scenes) knobs.restitution.push_back(e);
+        }
+      }
+    } else if (name == "gains") {
+      bool servos = false;
+      for (const FigureDef& figure : scene.figures)
+        servos |= !figure.controllers.empty() || (figure.mocap && !figure.mocap->joints.empty());
+      if (servos) {
+        knobs.gains = {0.5, 1.0, 2.0};
+      } else {
+        notes.push_back("gains left out: no figure has a joint controller");
+      }
+    } else if (name == "settling") {
+      bool mrac = false;
+      for (const FigureDef& figure : scene.figures) {
+        for (const ControllerDef& c : figure.controllers) mrac |= c.kind == ControllerKind::mrac;
+        mrac |= figure.mocap && !figure.mocap->joints.empty() &&
+                figure.mocap->controller == ControllerKind::mrac;
+      }
+      if (mrac) {
+        knobs.settling = {0.5, 1.0, 2.0};
+      } else {
+        notes.push_back("settling left out: no figure has an MRAC controller (t_s is MRAC's)");
+      }
     } else {
       throw Error("", "--knobs",
-                  "unknown knob '" + name + "' (dt, integrator, tolerance, resolution, contact)");
+                  "unknown knob '" + name +
+                      "' (dt, integrator, tolerance, resolution, contact, stiffness, "
+                      "restitution, gains, settling)");
     }
   }
   return knobs;
@@ -212,6 +281,29 @@ Scene apply_setting(const Scene& scene, const TradeoffSetting& setting) {
     t.segments = std::max(3, static_cast<int>(std::lround(t.segments * setting.resolution)));
     if (setting.contact) t.contact = *setting.contact;
   }
+  // The figures' physics. Damping goes with the square root of a stiffness or gain so that a
+  // contact's or servo's damping ratio, c / (2 sqrt(k m)), stays the scene's.
+  const Real root_stiffness = std::sqrt(setting.stiffness), root_gains = std::sqrt(setting.gains);
+  for (FigureDef& figure : s.figures) {
+    figure.contact_stiffness *= setting.stiffness;
+    figure.contact_damping *= root_stiffness;
+    if (setting.restitution) figure.restitution = *setting.restitution;
+    for (ControllerDef& c : figure.controllers) {
+      c.kp *= setting.gains;
+      c.kd *= root_gains;
+      c.alpha *= setting.gains;
+      c.beta *= setting.gains;
+      c.settling_time *= setting.settling;
+    }
+    if (figure.mocap) {
+      MocapDef& m = *figure.mocap;
+      m.kp *= setting.gains;
+      m.kd *= root_gains;
+      m.alpha *= setting.gains;
+      m.beta *= setting.gains;
+      m.settling_time *= setting.settling;
+    }
+  }
   return s;
 }
 
@@ -228,52 +320,98 @@ TradeoffReport run_tradeoff(const Scene& scene, const TradeoffOptions& options,
     }
     return true;
   };
+  const auto or_scenes = []<typename T>(const std::vector<T>& values, T scenes) {
+    return values.empty() ? std::vector<T>{scenes} : values;
+  };
   const std::vector<std::optional<ContactQuadrature>> contacts =
-      k.contacts.empty() ? std::vector<std::optional<ContactQuadrature>>{std::nullopt} : k.contacts;
-  for (const std::optional<ContactQuadrature>& contact : contacts)
-    for (Real resolution : k.resolutions)
-      for (IntegratorKind integrator : k.integrators) {
-        const bool adaptive = integrator == IntegratorKind::rk45;
-        for (Real tolerance : adaptive ? k.tolerances : std::vector<Real>{scene.solver.tolerance})
-          for (Real dt : k.dt) {
-            TradeoffSetting s{dt, integrator, tolerance, resolution, false, contact};
-            s.current = resolution == 1.0 && integrator == scene.solver.integrator &&
-                        dt == std::min(scene.solver.dt, 1.0 / scene.solver.fps) &&
-                        (!adaptive || tolerance == scene.solver.tolerance) && scenes_own(contact);
-            settings.push_back(s);
-          }
-      }
-  report.reference = TradeoffSetting{*std::min_element(k.dt.begin(), k.dt.end()),
-                                     IntegratorKind::rk45,
-                                     options.reference_tolerance,
-                                     *std::max_element(k.resolutions.begin(), k.resolutions.end()),
-                                     false,
-                                     std::nullopt};
+      or_scenes(k.contacts, std::optional<ContactQuadrature>{});
+  // The physics settings, the scene's own first: every other is compared with it.
+  std::vector<TradeoffSetting> physics{TradeoffSetting{}};
+  for (Real stiffness : or_scenes(k.stiffness, 1.0))
+    for (const std::optional<Real>& restitution : or_scenes(k.restitution, std::optional<Real>{}))
+      for (Real gains : or_scenes(k.gains, 1.0))
+        for (Real settling : or_scenes(k.settling, 1.0)) {
+          TradeoffSetting p;
+          p.stiffness = stiffness;
+          p.restitution = restitution;
+          p.gains = gains;
+          p.settling = settling;
+          if (!p.scenes_physics()) physics.push_back(p);
+        }
+  for (const TradeoffSetting& p : physics)
+    for (const std::optional<ContactQuadrature>& contact : contacts)
+      for (Real resolution : k.resolutions)
+        for (IntegratorKind integrator : k.integrators) {
+          const bool adaptive = integrator == IntegratorKind::rk45;
+          for (Real tolerance : adaptive ? k.tolerances : std::vector<Real>{scene.solver.tolerance})
+            for (Real dt : k.dt) {
+              TradeoffSetting s = p;
+              s.dt = dt;
+              s.integrator = integrator;
+              s.tolerance = tolerance;
+              s.resolution = resolution;
+              s.contact = contact;
+              s.current = resolution == 1.0 && integrator == scene.solver.integrator &&
+                          dt == std::min(scene.solver.dt, 1.0 / scene.solver.fps) &&
+                          (!adaptive || tolerance == scene.solver.tolerance) &&
+                          scenes_own(contact) && p.scenes_physics();
+              settings.push_back(s);
+            }
+        }
+  report.reference.dt = *std::min_element(k.dt.begin(), k.dt.end());
+  report.reference.integrator = IntegratorKind::rk45;
+  report.reference.tolerance = options.reference_tolerance;
+  report.reference.resolution = *std::max_element(k.resolutions.begin(), k.resolutions.end());
   // The three-point rule, the more accurate, when the sweep compares the rules.
   for (const std::optional<ContactQuadrature>& rule : k.contacts) {
     if (rule) report.reference.contact = ContactQuadrature::three_point;
   }
-  const int total = static_cast<int>(settings.size()) + 1;
-  progress(0, total, "reference: " + report.reference.label());
-  const Trajectory ref = record(apply_setting(scene, report.reference), options.seconds, cancel);
-  report.reference_wall_seconds = ref.wall_seconds;
-  if (!ref.ok) {
+  report.references = static_cast<int>(physics.size());
+  const int total = static_cast<int>(settings.size()) + report.references;
+  int done = 0;
+  // Each physics setting's reference; a failed one fails its points, the scene's the sweep.
+  std::vector<Trajectory> refs;
+  std::vector<TradeoffPoint> physics_change(physics.size());
+  for (std::size_t r = 0; r < physics.size(); ++r) {
+    TradeoffSetting reference = report.reference;
+    reference.stiffness = physics[r].stiffness;
+    reference.restitution = physics[r].restitution;
+    reference.gains = physics[r].gains;
+    reference.settling = physics[r].settling;
+    progress(done++, total, "reference: " + reference.label());
+    refs.push_back(record(apply_setting(scene, reference), options.seconds, cancel));
+    report.reference_wall_seconds += refs.back().wall_seconds;
     if (cancel && cancel->load()) {
       report.cancelled = true;
       return report;
     }
-    throw Error(scene.file, "solver",
-                "the reference run (" + report.reference.label() + ") failed: " + ref.message);
+    if (!refs.back().ok) {
+      if (r == 0) {
+        throw Error(scene.file, "solver",
+                    "the reference run (" + reference.label() + ") failed: " + refs[0].message);
+      }
+      refs.back().message =
+          "its reference (" + reference.label() + ") failed: " + refs.back().message;
+      continue;
+    }
+    if (r > 0) compare(refs[r], refs[0], physics_change[r]);
   }
   for (std::size_t i = 0; i < settings.size(); ++i) {
     if (cancel && cancel->load()) {
       report.cancelled = true;
       break;
     }
-    progress(static_cast<int>(i) + 1, total, settings[i].label());
-    const Trajectory run = record(apply_setting(scene, settings[i]), options.seconds, cancel);
+    std::size_t r = 0;
+    while (!settings[i].same_physics(physics[r])) ++r;
+    progress(done++, total, settings[i].label());
     TradeoffPoint point;
     point.setting = settings[i];
+    if (!refs[r].ok) {
+      point.message = refs[r].message;
+      report.points.push_back(point);
+      continue;
+    }
+    const Trajectory run = record(apply_setting(scene, settings[i]), options.seconds, cancel);
     point.ok = run.ok;
     point.message = run.message;
     point.wall_seconds = run.wall_seconds;
@@ -281,7 +419,10 @@ TradeoffReport run_tradeoff(const Scene& scene, const TradeoffOptions& options,
     point.evaluations = run.evaluations;
     point.retries = run.retries;
     point.constraint_violation = run.violation;
-    if (run.ok) compare(run, ref, point);
+    point.depth = run.depth;
+    point.physics_centre = physics_change[r].centre_error;
+    point.physics_joint = physics_change[r].joint_error;
+    if (run.ok) compare(run, refs[r], point);
     report.points.push_back(point);
   }
   mark_pareto_front(report.points);

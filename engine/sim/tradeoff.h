@@ -4,6 +4,12 @@
 // and its cost. `pbm bench tradeoff` writes it as CSV and a plot; the studio's trade panel shows
 // the same numbers for the open scene. Figures' segments count as centres; later subsystems add
 // their error columns here (liquid volume).
+//
+// The figures' physics knobs (contact stiffness, restitution, controller gains, t_s) change the
+// answer, not only its error: each of their settings gets a converged reference of its own, its
+// points are measured against that, and how far its reference lies from the scene's own is
+// reported apart (TradeoffPoint::physics_centre), so a user sees both what a knob costs and what
+// it changes.
 #pragma once
 
 #include <atomic>
@@ -25,6 +31,18 @@ struct TradeoffSetting {
   bool current = false;  // the scene's own setting
   // tessellation.contact of every local body; unset: each body's own
   std::optional<ContactQuadrature> contact;
+  // The figures' physics (FigureDef, ControllerDef; 1 and unset: the scene's own):
+  // every figure's contact_stiffness times this, its contact_damping times its square root
+  // (the contact's damping ratio kept, as MuJoCo's solref keeps dampratio);
+  Real stiffness = 1;
+  std::optional<Real> restitution;  // every figure's e (15.2)
+  // PD and stable-PD kp times this and kd times its square root (the servo's damping ratio
+  // kept), MRAC's alpha and beta (15.16), (15.17) times this; the mocap servos' alike;
+  Real gains = 1;
+  Real settling = 1;  // MRAC's t_s times this (15.11): lambda = 4 / t_s
+  // The physics this setting simulates: its stiffness, restitution, gains and settling.
+  bool same_physics(const TradeoffSetting& other) const;
+  bool scenes_physics() const;
   std::string label() const;
 };
 
@@ -43,7 +61,12 @@ struct TradeoffPoint {
   Real node_rms = -1;             // RMS of node position differences [m]; -1: other node count
   Real constraint_violation = 0;  // the run's own max |C| [m]
   Real energy_error = 0;          // |E - E_ref| / the reference's largest kinetic + elastic energy
-  bool pareto = false;            // no other point is both faster and more accurate (centre error)
+  Real depth = 0;                 // the run's deepest contact: figures' and bodies' nodes' [m]
+  // How far the converged answer of this setting's physics lies from the scene's own (both
+  // references; 0 for the scene's physics): what a physics knob changes, apart from the error.
+  Real physics_centre = 0;  // [m], as centre_error
+  Real physics_joint = 0;   // [rad], as joint_error
+  bool pareto = false;      // no other point is both faster and more accurate (centre error)
 };
 
 struct TradeoffKnobs {
@@ -53,6 +76,11 @@ struct TradeoffKnobs {
   std::vector<Real> resolutions;
   // Empty or {unset}: the bodies' own.
   std::vector<std::optional<ContactQuadrature>> contacts{std::nullopt};
+  // The figures' physics knobs (TradeoffSetting); empty: the scene's own ({1} and {unset}).
+  std::vector<Real> stiffness;
+  std::vector<std::optional<Real>> restitution;
+  std::vector<Real> gains;
+  std::vector<Real> settling;
 };
 
 struct TradeoffOptions {
@@ -62,28 +90,33 @@ struct TradeoffOptions {
 };
 
 struct TradeoffReport {
-  TradeoffSetting reference;
-  double reference_wall_seconds = 0;
+  TradeoffSetting reference;          // of the scene's own physics
+  double reference_wall_seconds = 0;  // of all references
+  int references = 1;                 // one per physics setting
   std::vector<TradeoffPoint> points;
   std::vector<std::string> notes;  // knobs left out and why
   bool cancelled = false;
 };
 
-// The knobs named (dt, integrator, tolerance, resolution, contact) at values around the scene's:
-// dt at 2, 1, 1/2, 1/4 times the scene's (at most a frame), euler, rk4 and implicit, rk45 at
-// 1e-3, 1e-4, 1e-5, resolution 1/2, 1 and 2 times, contact at both rules of
-// tessellation.contact. Resolution is left out (with a note) when a body's mass is given per
-// node (`nodal_mass`): refining it changes the physics; contact, when no body is local (only
-// local bodies have contact points). Throws pbm::Error naming an unknown knob.
+// The knobs named (dt, integrator, tolerance, resolution, contact, and the figures' stiffness,
+// restitution, gains, settling) at values around the scene's: dt at 2, 1, 1/2, 1/4 times the
+// scene's (at most a frame), euler, rk4 and implicit, rk45 at 1e-3, 1e-4, 1e-5, resolution 1/2,
+// 1 and 2 times, contact at both rules of tessellation.contact, stiffness 1/4, 1 and 4 times,
+// restitution the scene's and 0, 0.5, 1, gains and settling 1/2, 1 and 2 times. Resolution is
+// left out (with a note) when a body's mass is given per node (`nodal_mass`): refining it
+// changes the physics; contact, when no body is local (only local bodies have contact points);
+// the figures' knobs, when no figure has what they act on. Throws pbm::Error naming an unknown
+// knob.
 TradeoffKnobs default_knobs(const Scene& scene, const std::vector<std::string>& names,
                             std::vector<std::string>& notes);
 
 // The scene with a setting's knobs applied.
 Scene apply_setting(const Scene& scene, const TradeoffSetting& setting);
 
-// The reference (rk45 at options.reference_tolerance, the smallest dt and the finest resolution
-// of the sweep), then every setting of the sweep. progress(done, total, label) is called before
-// each run; `cancel`, when set, stops the sweep after the run in progress (report.cancelled).
+// The references (rk45 at options.reference_tolerance, the smallest dt and the finest resolution
+// of the sweep; one per physics setting), then every setting of the sweep. progress(done, total,
+// label) is called before each run; `cancel`, when set, stops the sweep after the run in progress
+// (report.cancelled).
 using TradeoffProgress = FunctionRef<void(int done, int total, const std::string& label)>;
 TradeoffReport run_tradeoff(const Scene& scene, const TradeoffOptions& options,
                             TradeoffProgress progress, const std::atomic<bool>* cancel = nullptr);
