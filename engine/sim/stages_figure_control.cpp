@@ -9,6 +9,7 @@
 #include "figure/figure_kinematics.h"
 #include "figure/inverse_dynamics.h"
 #include "figure/stable_pd.h"
+#include "sim/stages_figures.h"
 
 namespace pbm::stages {
 
@@ -136,18 +137,24 @@ void add_site_actuator_forces(const RateContext& c, std::size_t f) {
   const CompiledFigure& figure = c.model.figures[f];
   const FigureModel& model = figure.model;
   FigureWorkspace& each = fw.each[f];
-  figure_kinematics(model, c.q.data() + model.state_q_offset, c.v.data() + model.state_v_offset,
-                    each);
-  segment_world_transforms(model, each, fw.world);
+  // With contacts, figure_contact_forces, the rate stage before this one (sim/subsystems.cpp),
+  // has left this rate's kinematics and world transforms in fw.each and fw.worlds; without, they
+  // are computed here, once.
+  const bool known = figure_contacts_present(c.model);
+  if (!known) {
+    figure_kinematics(model, c.q.data() + model.state_q_offset, c.v.data() + model.state_v_offset,
+                      each);
+    segment_world_transforms(model, each, fw.world);
+  }
+  const std::vector<SpatialTransform>& world = known ? fw.worlds[f] : fw.world;
   const std::span<ForceVector> forces(fw.site_forces.data(),
                                       static_cast<std::size_t>(model.size()));
   for (ForceVector& force : forces) force = ForceVector{};
   for (std::size_t k = 0; k < figure.site_actuators.size(); ++k) {
     const CompiledSiteActuator& a = figure.site_actuators[k];
     const int i = a.site.segment;
-    const SitePull pull =
-        site_pull(a, c.t, fw.world[i], each.v[i], site_target_input(c.inputs, f, k));
-    forces[i] += site_pull_force(a, fw.world[i], pull);
+    const SitePull pull = site_pull(a, c.t, world[i], each.v[i], site_target_input(c.inputs, f, k));
+    forces[i] += site_pull_force(a, world[i], pull);
   }
   add_external_joint_forces(model, forces, each, fw.control[f].tau.data());
 }
