@@ -9,10 +9,17 @@ namespace pbm {
 void forward_dynamics(const FigureModel& figure, const Real* q, const Real* v, const Real* tau,
                       std::span<const ForceVector> f_ext, const Vec3& gravity, FigureWorkspace& ws,
                       Real* qdd, const Real* armature) {
-  const int n = figure.size();
-  // Pass 1, outward: velocities, velocity products, and each segment's own inertia and bias
-  // force p = v x* I v - f_ext as its articulated ones to start from.
+  // Pass 1, outward: velocities and velocity products (figure_kinematics), then the rest.
   figure_kinematics(figure, q, v, ws);
+  forward_dynamics_after_kinematics(figure, tau, f_ext, gravity, ws, qdd, armature);
+}
+
+void forward_dynamics_after_kinematics(const FigureModel& figure, const Real* tau,
+                                       std::span<const ForceVector> f_ext, const Vec3& gravity,
+                                       FigureWorkspace& ws, Real* qdd, const Real* armature) {
+  const int n = figure.size();
+  // The end of pass 1: each segment's own inertia and bias force p = v x* I v - f_ext as its
+  // articulated ones to start from.
   for (int i = 0; i < n; ++i) {
     ws.IA[i] = ws.inertia[i];
     ws.f[i] = force_cross(ws.v[i], ws.inertia[i] * ws.v[i]);

@@ -19,4 +19,12 @@ void forward_dynamics(const FigureModel& figure, const Real* q, const Real* v, c
                       std::span<const ForceVector> f_ext, const Vec3& gravity, FigureWorkspace& ws,
                       Real* qdd, const Real* armature = nullptr);
 
+// The same with ws already holding figure_kinematics(figure, q, v, ws) of the q and v meant: a
+// stage before it in the same rate evaluation computed them (the figures' contact forces), so
+// ABA's first pass does not repeat them.
+void forward_dynamics_after_kinematics(const FigureModel& figure, const Real* tau,
+                                       std::span<const ForceVector> f_ext, const Vec3& gravity,
+                                       FigureWorkspace& ws, Real* qdd,
+                                       const Real* armature = nullptr);
+
 }  // namespace pbm

@@ -457,6 +457,12 @@ void figure_dynamics(const RateContext& c) {
     const Real* armature = implicit_damping(c.model, figure, fw);
     if (has_stable_pd(compiled)) {
       stable_pd_dynamics(c, f, external, armature);
+    } else if (figure_contacts_present(c.model) || !compiled.site_actuators.empty()) {
+      // figure_contact_forces (or, without contacts, the site actuators' forces), a stage before
+      // this one (sim/subsystems.cpp), left this rate's kinematics in fw.each[f].
+      forward_dynamics_after_kinematics(figure, fw.tau.data(), external, c.ws.drive.gravity,
+                                        fw.each[f], c.v_dot.data() + figure.state_v_offset,
+                                        armature);
     } else {
       forward_dynamics(figure, q_of(figure, c.q), v, fw.tau.data(), external, c.ws.drive.gravity,
                        fw.each[f], c.v_dot.data() + figure.state_v_offset, armature);
