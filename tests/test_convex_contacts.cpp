@@ -1,8 +1,9 @@
 // The narrowphase of segment-segment collisions (collide/convex_contacts.h) against closed forms:
 // two spheres, a sphere on a box's face, two crossed capsules, a box standing on a box (four
 // points, one at each corner of the smaller face), a capsule lying on a box and a log on a log
-// (two points, under their ends), an upright cylinder on a box, solids apart, and the same pair
-// swapped (the normal turns round). Bullet is single precision here: 1e-5 m.
+// (two points, under their ends), a cylinder on a box standing (four rim points), tilted (the
+// rim's arc inside) and lying (under both caps), solids apart, and the same pair swapped (the
+// normal turns round). Bullet is single precision here: 1e-5 m.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -131,13 +132,76 @@ TEST(ConvexContacts, ABoxStandsOnABoxAtFourCorners) {
   expect_near(mean, Vec3(0.1, 0.2, 0.095), kTolerance);
 }
 
-TEST(ConvexContacts, AnUprightCylinderOnABoxSinksByItsOverlap) {
-  const ConvexSolid cylinder = solid(ConvexKind::cylinder, Vec3(0.1, 0, 0.2), Vec3(0, 0, 0.29));
+// Standing on its cap, a cylinder rests on four rim points at right angles, each sunk by the
+// overlap (the box's signed distance is exact: 1e-12), their mean on its axis, so their equal
+// springs hold it up without a torque; the pair swapped turns the normals round.
+TEST(ConvexContacts, AnUprightCylinderOnABoxStandsOnFourRimPoints) {
+  const ConvexSolid cylinder = solid(ConvexKind::cylinder, Vec3(0.1, 0, 0.2), Vec3(0.05, 0, 0.29));
   const ConvexSolid box = solid(ConvexKind::box, Vec3(0.5, 0.5, 0.1), Vec3::Zero());
   ConvexContacts out;
-  ASSERT_EQ(convex_contacts(cylinder, box, out), 1);
-  EXPECT_NEAR(out[0].depth, 0.01, kTolerance);
-  expect_near(out[0].normal, Vec3::UnitZ(), kTolerance);
+  ASSERT_EQ(convex_contacts(cylinder, box, out), 4);
+  Vec3 mean = Vec3::Zero();
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_NEAR(out[k].depth, 0.01, 1e-12);
+    expect_near(out[k].normal, Vec3::UnitZ(), 1e-12);
+    EXPECT_NEAR(std::hypot(out[k].point.x() - 0.05, out[k].point.y()), 0.1, 1e-12);
+    EXPECT_NEAR(out[k].point.z(), 0.095, 1e-12);  // midway between the box's top and the rim
+    mean += out[k].point / 4;
+  }
+  expect_near(mean, Vec3(0.05, 0, 0.095), 1e-12);
+  // Neighbours at right angles.
+  EXPECT_NEAR((out[0].point - Vec3(0.05, 0, 0.095)).dot(out[1].point - Vec3(0.05, 0, 0.095)), 0,
+              1e-12);
+  ASSERT_EQ(convex_contacts(box, cylinder, out), 4);
+  for (int k = 0; k < 4; ++k) expect_near(out[k].normal, -Vec3::UnitZ(), 1e-12);
+}
+
+// Tilted by 0.05 rad about x, it rests on the arc of its rim that dips into the box: the points
+// found are those whose depth by geometry, 0.01 - |z| of the rim point above the centre, is > 0.
+TEST(ConvexContacts, ATiltedCylinderRestsOnTheArcOfItsRimInside) {
+  const Real tilt = 0.05;
+  const Mat3 R = Eigen::AngleAxis<Real>(tilt, Vec3::UnitX()).toRotationMatrix();
+  // The rim's lowest point at z = -0.01 (the box's top is z = 0.1).
+  const Real low = 0.2 * std::cos(tilt) + 0.1 * std::sin(tilt);
+  const ConvexSolid cylinder =
+      solid(ConvexKind::cylinder, Vec3(0.1, 0, 0.2), Vec3(0, 0, 0.1 + low - 0.01), R);
+  const ConvexSolid box = solid(ConvexKind::box, Vec3(0.5, 0.5, 0.1), Vec3::Zero());
+  ConvexContacts out;
+  const int n = convex_contacts(cylinder, box, out);
+  ASSERT_GE(n, 2);
+  for (int k = 0; k < n; ++k) {
+    // Each point's depth is how far its rim point lies below the box's top.
+    const Real rim_z = out[k].point.z() - 0.5 * out[k].depth;
+    EXPECT_NEAR(out[k].depth, 0.1 - rim_z, 1e-12);
+    EXPECT_GT(out[k].depth, 0);
+    EXPECT_LE(out[k].depth, 0.01 + 1e-12);
+    expect_near(out[k].normal, Vec3::UnitZ(), 1e-12);
+  }
+}
+
+// Lying on its side, a cylinder touches along a line: a point under each cap, each sunk by the
+// overlap, whatever its roll (22.5 degrees puts the lowest line between two rim points).
+TEST(ConvexContacts, ACylinderLyingOnABoxRestsUnderBothCaps) {
+  const Mat3 along_x =
+      Eigen::AngleAxis<Real>(std::numbers::pi / 2, Vec3::UnitY()) *
+      Eigen::AngleAxis<Real>(std::numbers::pi / 8, Vec3::UnitZ()).toRotationMatrix();
+  const ConvexSolid cylinder =
+      solid(ConvexKind::cylinder, Vec3(0.1, 0, 0.3), Vec3(0.1, 0.2, 0.1 + 0.1 - 0.002), along_x);
+  const ConvexSolid box = solid(ConvexKind::box, Vec3(0.5, 0.5, 0.1), Vec3::Zero());
+  ConvexContacts out;
+  ASSERT_EQ(convex_contacts(cylinder, box, out), 2);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_NEAR(out[k].depth, 0.002, kTolerance);
+    expect_near(out[k].normal, Vec3::UnitZ(), 1e-4);
+    EXPECT_NEAR(out[k].point.z(), 0.099, kTolerance);
+    // Within the patch each cap's disc cuts from the box: the chord sqrt(2 r depth) = 0.02 m
+    // either side of the lowest line across, the disc's thickness (2e-4 m, at the cap) along.
+    EXPECT_LT(std::abs(out[k].point.y() - 0.2), std::sqrt(2 * 0.1 * 0.002));
+    const Real along = std::abs(out[k].point.x() - 0.1);
+    EXPECT_GT(along, 0.3 - 2e-4 - kTolerance);
+    EXPECT_LT(along, 0.3 + kTolerance);
+  }
+  EXPECT_LT((out[0].point.x() - 0.1) * (out[1].point.x() - 0.1), 0);  // one under each cap
 }
 
 TEST(ConvexContacts, SolidsApartHaveNoContact) {

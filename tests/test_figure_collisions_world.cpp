@@ -176,6 +176,39 @@ TEST(FigureCollisions, ABobRestsWhereItsWeightBalancesTheContactSpring) {
   EXPECT_NEAR(sim.stats.figures[0].elastic, 0.5 * k * d * d, 1e-3 * 0.5 * k * d * d);
 }
 
+// A 2 kg can (a cylinder of radius 0.05 m, 0.3 m tall) set down 2 cm off the centre of a table
+// top (another figure's fixed box) stands on four rim points (collide/convex_contacts.h): their
+// equal springs hold it upright without a torque, each sunk by m g / (4 k).
+TEST(FigureCollisions, ACanStandsUprightOnATableOnFourRimSprings) {
+  const Scene scene = parse_scene(
+      R"({"solver": {"dt": 0.001, "fps": 50, "integrator": "rk4"},
+          "figures": [
+            {"name": "table", "segments": [{"name": "top",
+              "joint": {"kind": "fixed", "position": [0, 0, 0.5]},
+              "shape": {"kind": "box", "size": [0.5, 0.5, 0.05]}, "mass": 20}]},
+            {"name": "can", "segments": [{"name": "can",
+              "joint": {"kind": "free", "q0": [0.02, 0, 0.7, 1, 0, 0, 0]},
+              "shape": {"kind": "cylinder", "size": [0.05, 0.05, 0.15]}, "mass": 2}]}]})",
+      "can.json");
+  Simulation sim(scene);
+  for (int frame = 0; frame < 50; ++frame) ASSERT_TRUE(advance_frame(sim).ok);
+  const int offset = sim.model.figures[1].model.state_q_offset;
+  const Vec3 centre = sim.state.q.segment<3>(offset);
+  const Vec4 quaternion = sim.state.q.segment<4>(offset + 3);
+  const Real tilt = 2 * std::asin(std::min(1.0, quaternion.tail<3>().norm()));
+  const Real k = sim.model.scene.figures[1].contact_stiffness;
+  const Real sink = 2 * 9.81 / (4 * k);
+  std::printf(
+      "can after 1 s: centre (%.3e, %.3e, %.9f) m, tilt %.3e rad, %d contacts; "
+      "standing on four springs: z %.9f\n",
+      centre.x(), centre.y(), centre.z(), tilt, sim.stats.figures[1].contacts, 0.7 - sink);
+  EXPECT_EQ(sim.stats.figures[1].contacts, 4);
+  EXPECT_NEAR(centre.z(), 0.7 - sink, 1e-6);
+  EXPECT_LT(tilt, 1e-6);
+  EXPECT_NEAR(centre.x(), 0.02, 1e-6);
+  EXPECT_NEAR(centre.y(), 0, 1e-6);
+}
+
 TEST(FigureCollisions, ANonCollidingPairPassesThrough) {
   for (const std::string extra :
        {R"(, "non_colliding": [{"a": "bob", "b": "post"}])", R"(, "self_collisions": false)"}) {

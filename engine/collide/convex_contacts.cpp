@@ -11,6 +11,7 @@
 #include <BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h>
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <variant>
 
 namespace pbm {
@@ -104,6 +105,54 @@ ConvexSolid capsule_end(const ConvexSolid& capsule, Real end) {
           .center = capsule.center + end * capsule.size.z() * capsule.rotation.col(2)};
 }
 
+// The rim of each of a cylinder's caps, as this many points (every 45 degrees).
+constexpr int kRimPoints = 8;
+
+// A cylinder's rim points inside the other solid, by the other's exact signed distance: each a
+// contact along the other's outward normal there, turned to point from b toward a
+// (`cylinder_is_a`). Up to kMaxConvexContacts of them, spread: a whole ring inside (a cylinder
+// standing on its cap) gives four at right angles, whose forces balance about its axis; an arc
+// (tilted) its two ends and two between. Returns how many.
+int rim_contacts(const ConvexSolid& cylinder, const ConvexSolid& other, bool cylinder_is_a,
+                 ConvexContacts& out) {
+  std::array<ConvexContact, 2 * kRimPoints> inside;
+  int n = 0;
+  const Real r = cylinder.size.x(), h = cylinder.size.z();
+  for (const Real cap : {-1.0, 1.0}) {
+    for (int k = 0; k < kRimPoints; ++k) {
+      const Real angle = 2 * std::numbers::pi * k / kRimPoints;
+      const Vec3 p = cylinder.center +
+                     cylinder.rotation * Vec3(r * std::cos(angle), r * std::sin(angle), cap * h);
+      Vec3 normal;
+      const Real d = convex_signed_distance(other, p, normal);
+      if (!(d < 0)) continue;
+      inside[static_cast<std::size_t>(n++)] = {p - 0.5 * d * normal,
+                                               cylinder_is_a ? normal : Vec3(-normal), -d};
+    }
+  }
+  if (n <= kMaxConvexContacts) {
+    std::copy_n(inside.begin(), n, out.begin());
+    return n;
+  }
+  for (int k = 0; k < kMaxConvexContacts; ++k) {
+    const int i = n % kMaxConvexContacts == 0
+                      ? k * n / kMaxConvexContacts
+                      : static_cast<int>(std::lround(k * (n - 1) / Real(kMaxConvexContacts - 1)));
+    out[static_cast<std::size_t>(k)] = inside[static_cast<std::size_t>(i)];
+  }
+  return kMaxConvexContacts;
+}
+
+// One of a cylinder's caps (end = -1 or +1) as a disc: a cylinder of a thousandth of its radius
+// in half length at that end.
+ConvexSolid cylinder_cap(const ConvexSolid& cylinder, Real end) {
+  const Real half = 1e-3 * cylinder.size.x();
+  return {.kind = ConvexKind::cylinder,
+          .size = Vec3(cylinder.size.x(), cylinder.size.x(), half),
+          .rotation = cylinder.rotation,
+          .center = cylinder.center + end * (cylinder.size.z() - half) * cylinder.rotation.col(2)};
+}
+
 }  // namespace
 
 int convex_contacts(const ConvexSolid& a, const ConvexSolid& b, ConvexContacts& out) {
@@ -119,6 +168,29 @@ int convex_contacts(const ConvexSolid& a, const ConvexSolid& b, ConvexContacts& 
     btBoxBoxDetector detector(&std::get<btBoxShape>(storage_a), &std::get<btBoxShape>(storage_b));
     detector.getClosestPoints(input, collector, nullptr);
     return collector.count;
+  }
+  // A cylinder resting on the other solid touches it on a disc (standing on a cap) or along a line
+  // (lying on its side), where GJK's one deepest point would let it rock or roll: its rim points
+  // inside the other, where at least two are; else, lying along it, the deepest points of its
+  // two caps where both touch; else (an edge or a corner poking in) the deepest point.
+  const bool a_cylinder = a.kind == ConvexKind::cylinder && b.kind != ConvexKind::sphere;
+  const bool b_cylinder = b.kind == ConvexKind::cylinder && a.kind != ConvexKind::sphere;
+  if (a_cylinder || b_cylinder) {
+    int n = a_cylinder ? rim_contacts(a, b, true, out) : 0;
+    if (n < 2 && b_cylinder) n = rim_contacts(b, a, false, out);
+    if (n >= 2) return n;
+    ConvexContacts caps;
+    int m = 0;
+    for (const Real end : {-1.0, 1.0}) {
+      const bool touches = a_cylinder ? deepest_contact(cylinder_cap(a, end), b, caps[m])
+                                      : deepest_contact(a, cylinder_cap(b, end), caps[m]);
+      m += touches ? 1 : 0;
+    }
+    if (m == 2) {
+      out[0] = caps[0];
+      out[1] = caps[1];
+      return 2;
+    }
   }
   // A capsule lying along the other solid touches it along a line: GJK's one deepest point would
   // let it rock on that point, so where both its end spheres touch, they are its two points (a

@@ -1,8 +1,10 @@
 // Contact points between two convex solids (box, sphere, cylinder, capsule), the narrowphase of
 // the articulated figures' segment-segment collisions (sec. 15.3's detection). Bullet computes
 // them: its box-box detector (ODE's, up to 4 points: a box resting on a box stands on its face)
-// for two boxes, GJK with EPA (the deepest point) for every other pair, and a capsule lying along
-// the other solid (both its end spheres touching) gets those two points. Nothing is cached between
+// for two boxes, GJK with EPA (the deepest point) for every other pair; a capsule lying along
+// the other solid (both its end spheres touching) gets those two points, and a cylinder resting
+// on it its rim points inside the other (up to 4: standing on a cap) or, lying on its side, its
+// two caps' deepest points. Nothing is cached between
 // calls, so the points are a function of the two poses alone (docs/architecture.md,
 // "Determinism"). Bullet here is single precision: points and depths carry ~1e-7 relative error.
 #pragma once
