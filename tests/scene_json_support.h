@@ -100,7 +100,7 @@ inline json full_scene() {
                    {"position": [0, 0.04, 0.2], "orientation": [0, 1, 0, 0]}]},
         {"parent": "upper", "joint": {"kind": "spherical", "position": [0, 0, 0.4],
                                       "stiffness": 2, "rest": [1, 0, 0, 0],
-                                      "q0": [2, 0, 0, 0], "swing_limit": 1.2,
+                                      "q0": [2, 0, 0, 0], "swing_limit": 1.2, "twist_limit": 0.8,
                                       "limit_restitution": 0.5},
          "shape": {"kind": "sphere", "size": [0.05, 0.05, 0.05]}},
         {"parent": "upper", "joint": {"kind": "universal", "axis": [1, 0, 0],
@@ -318,6 +318,7 @@ inline void expect_same_scene(const Scene& a, const Scene& b) {
       EXPECT_EQ(x.joint.upper, y.joint.upper);
       EXPECT_EQ(x.joint.limit_restitution, y.joint.limit_restitution);
       EXPECT_EQ(x.joint.swing_limit, y.joint.swing_limit);
+      EXPECT_EQ(x.joint.twist_limit, y.joint.twist_limit);
       EXPECT_EQ(x.joint.q0, y.joint.q0);
       EXPECT_EQ(x.joint.v0, y.joint.v0);
       EXPECT_EQ(x.shape.kind, y.shape.kind);

@@ -4,11 +4,17 @@
 // gravity rests where the limit's spring balances its weight, the closed form at two steps (a
 // shorter step, a harder limit); the spring's stiffness is k = I (0.5 / dt)^2. A spherical joint's
 // swing cone: a rod swinging and twisting into it leaves at -e times its swing rate with its twist
-// untouched, and a rod held out sideways rests on its cone where the spring holds its weight.
+// untouched, and a rod held out sideways rests on its cone where the spring holds its weight. Its
+// twist limit: the twist's row is its angle's rate, and a rod twisting into the limit leaves at -e
+// times its twist rate.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <string>
 
 #include "figure/joint_limits.h"
@@ -250,6 +256,89 @@ TEST(JointLimits, ARodHeldOutSidewaysRestsOnItsConeWhereTheSpringHoldsItsWeight)
   // The spring is the swing's: k = I (0.5 / dt)^2 with I the rod's inertia about the joint across
   // its axis, m (d^2 + ...) from H at q0: at least m d^2.
   EXPECT_GT(k, 2 * 0.35 * 0.35 * 250 * 250);
+}
+
+// The twist limit's coordinate and row (figure/joint_limits.h): a pure twist about z by 0.3 rad
+// is psi = 0.3, a swing alone leaves psi = 0, and g . omega is psi's rate, against a central
+// difference of psi along q (0, omega) / 2 at random orientations and rates.
+TEST(JointLimits, TheTwistsRowIsItsAnglesRate) {
+  const JointLimit twist{.twist = true, .lower = -1, .upper = 1};
+  const auto psi = [&](const Eigen::Quaterniond& u) {
+    const Real q[4] = {u.w(), u.x(), u.y(), u.z()};
+    return limit_coordinate(twist, q);
+  };
+  EXPECT_NEAR(psi(Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Vec3::UnitZ()))), 0.3, 1e-15);
+  EXPECT_NEAR(psi(Eigen::Quaterniond(Eigen::AngleAxisd(1.1, Vec3(1, 2, 0).normalized()))), 0,
+              1e-15);
+  // A swing after a twist: the twist is read back through the swing.
+  EXPECT_NEAR(psi(Eigen::Quaterniond(Eigen::AngleAxisd(0.9, Vec3(0, 1, 0))) *
+                  Eigen::Quaterniond(Eigen::AngleAxisd(-0.4, Vec3::UnitZ()))),
+              -0.4, 1e-15);
+  std::srand(7);
+  Real worst = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    const Eigen::Quaterniond u = Eigen::Quaterniond(Vec4::Random().normalized());
+    const Vec3 omega = Vec3::Random();
+    const Real h = 1e-6;
+    const auto turned = [&](Real t) {
+      return u * Eigen::Quaterniond(Eigen::AngleAxisd(omega.norm() * t, omega.normalized()));
+    };
+    const Real q[4] = {u.w(), u.x(), u.y(), u.z()};
+    const Real rate = limit_row(twist, q).dot(omega);
+    Real difference = psi(turned(h)) - psi(turned(-h));
+    // Across the wrap at +-pi the angle jumps by 2 pi.
+    if (difference > std::numbers::pi) difference -= 2 * std::numbers::pi;
+    if (difference < -std::numbers::pi) difference += 2 * std::numbers::pi;
+    worst = std::max(worst, std::abs(difference / (2 * h) - rate) / (1 + std::abs(rate)));
+  }
+  std::printf("twist row against a central difference: worst relative error %.2e\n", worst);
+  EXPECT_LT(worst, 1e-7);
+}
+
+// A rod on a spherical joint twisting at 2 rad/s about its own axis (and swinging at 0.3 rad/s)
+// strikes its twist limit of 0.5 rad and leaves at -e times its twist rate (e = 0, 0.5, 1); after
+// it, the twist stays within the limit and the spring's small overshoot.
+TEST(JointLimits, ARodTwistingIntoItsLimitLeavesWithItsRestitution) {
+  for (const Real e : {0.0, 0.5, 1.0}) {
+    char text[1024];
+    std::snprintf(text, sizeof text,
+                  R"({"gravity": [0, 0, 0], "solver": {"dt": 0.001, "fps": 50, "integrator": "rk4"},
+            "figures": [{"name": "rod", "segments": [
+              {"joint": {"kind": "spherical", "position": [0, 0, 1], "twist_limit": 0.5,
+                         "limit_restitution": %.17g, "v0": [0.3, 0, 2]},
+               "shape": {"kind": "capsule", "size": [0.05, 0.05, 0.3], "center": [0, 0, 0.35]},
+               "mass": 2}]}]})",
+                  e);
+    Simulation sim(parse_scene(text, "twist.json"));
+    const JointLimit& limit = sim.model.figures[0].limits.at(0);
+    ASSERT_TRUE(limit.twist);
+    Real before = 0, after = 0, angle = 0;
+    bool hit = false;
+    auto watch = [&](StepStage stage, SubsystemId, bool done, const State& state, Workspace&) {
+      if (stage != StepStage::impacts || hit) return;
+      const Real rate = limit_row(limit, state.q.data()).dot(state.v.head<3>());
+      if (!done) {
+        before = rate;
+        angle = limit_coordinate(limit, state.q.data());
+      } else {
+        after = rate;
+        hit = after != before;
+      }
+    };
+    ASSERT_TRUE(test::step_until(
+        sim, watch, [&] { return hit; }, 2000));
+    std::printf("e = %.1f: at %.6f rad, twist rate %.12f -> %.12f rad/s\n", e, angle, before,
+                after);
+    EXPECT_GT(angle, 0.5);
+    EXPECT_LT(angle, 0.5 + 0.001 * 2.1);  // found within the step that crossed it
+    EXPECT_NEAR(after, -e * before, 1e-12 * std::abs(before));
+    Real largest = 0;
+    for (int frame = 0; frame < 50; ++frame) {
+      ASSERT_TRUE(advance_frame(sim).ok);
+      largest = std::max(largest, std::abs(limit_coordinate(limit, sim.state.q.data())));
+    }
+    EXPECT_LT(largest, 0.5 + 0.01);
+  }
 }
 
 }  // namespace

@@ -1,14 +1,19 @@
 // Motion capture (figure/mocap_clip.h, figure/mocap_retarget.h): the clip of scenes/mocap/wave.bvh
 // (written by tools/gen-wave-bvh, whose channels are closed forms) read through assimp, its
 // forward kinematics, its angles retargeted onto revolute and universal joints through the
-// placement rotation (a Y-up clip stood up in a Z-up world), its markers onto site paths, the
-// refusals naming the key, and the mocap-wave scene's servos following the clip.
+// placement rotation (a Y-up clip stood up in a Z-up world), its rotations onto spherical joints'
+// rotation vectors, its markers onto site paths, the refusals naming the key, and the mocap-wave
+// scene's servos following the clip, on a universal shoulder or on a ball.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
+#include <fstream>
 #include <numbers>
 #include <string>
 
+#include "control/ball_coordinates.h"
 #include "core/error.h"
 #include "core/keyframes.h"
 #include "figure/figure_build.h"
@@ -131,7 +136,7 @@ void expect_mocap_error(const std::string& mocap, const std::string& path,
   const std::string text =
       R"({"figures": [{"segments": [{"name": "a", "joint": {"axis": [0, 1, 0]},
           "sites": [{"name": "tip"}]}, {"name": "b", "parent": "a",
-          "joint": {"kind": "spherical"}}], "mocap": )" +
+          "joint": {"kind": "fixed"}}], "mocap": )" +
       mocap + "}]}";
   try {
     parse_scene(text, std::string(PBM_SOURCE_DIR) + "/scenes/x.json");
@@ -150,7 +155,7 @@ TEST(Mocap, RefusalsNameTheKey) {
   expect_mocap_error(R"({"file": "mocap/wave.bvh", "joints": [{"bvh": "Chest", "joint": "c"}]})",
                      "figures[0].mocap.joints[0].joint", "names no segment");
   expect_mocap_error(R"({"file": "mocap/wave.bvh", "joints": [{"bvh": "Chest", "joint": "b"}]})",
-                     "figures[0].mocap.joints[0].joint", "not revolute or universal");
+                     "figures[0].mocap.joints[0].joint", "not revolute, universal or spherical");
   expect_mocap_error(R"({"file": "mocap/wave.bvh", "joints": [{"bvh": "Chest", "joint": "a"},
                          {"bvh": "Hips", "joint": "a"}]})",
                      "figures[0].mocap.joints[1].joint", "already mapped");
@@ -186,6 +191,58 @@ TEST(Mocap, ServosFollowTheClip) {
   // The wave spans 70 degrees (1.22 rad).
   EXPECT_LT(rms, 0.02 * radians(70)) << "worst " << worst;
   std::printf("elbow follows the clip: RMS %.4f rad, worst %.4f rad\n", rms, worst);
+}
+
+// The mocap-wave scene with its right shoulder a spherical joint in place of the universal one:
+// its three servos (the scene's stable PD) get the clip's rotation vector, abduction about +y,
+// and the shoulder steps as the universal one does, the arm swinging in the xz plane with the
+// ball's x and z components at rest (gravity and the clip turn it about y alone).
+TEST(Mocap, ABallShoulderFollowsTheClipAsTheUniversalOne) {
+  std::ifstream in(kScene);
+  nlohmann::json j = nlohmann::json::parse(in);
+  const Real duration = 2;
+  j["solver"]["duration"] = duration;
+  Simulation universal(parse_scene(j.dump(), kScene));
+  nlohmann::json& shoulder = j["figures"][0]["segments"][3];
+  ASSERT_EQ(shoulder["name"], "upper_arm_r");
+  shoulder["joint"] = {{"kind", "spherical"}, {"position", {-0.2, 0, 0.36}}, {"damping", 0.5}};
+  Simulation ball(parse_scene(j.dump(), kScene));
+  const CompiledFigure& f = ball.model.figures[0];
+  int at = -1;
+  for (int i = 0; i < f.model.size(); ++i) {
+    if (f.model.segments[i].name == "upper_arm_r") at = f.model.segments[i].q_offset;
+  }
+  ASSERT_GE(at, 0);
+  for (int dof = 0; dof < 3; ++dof) {
+    const JointController* c = nullptr;
+    for (const JointController& k : f.controllers) {
+      if (k.def.joint == "upper_arm_r" && k.def.dof == dof) c = &k;
+    }
+    ASSERT_NE(c, nullptr) << dof;
+    EXPECT_TRUE(c->ball);
+    EXPECT_EQ(c->def.kind, ControllerKind::stable_pd);
+    Real worst = 0;
+    for (const Keyframe& key : c->def.keys) {
+      worst = std::max(worst, std::abs(key.value - (dof == 1 ? radians(abduction(key.time)) : 0)));
+    }
+    EXPECT_LT(worst, 1e-6) << "dof " << dof;
+  }
+  Real worst = 0, off_axis = 0, largest = 0;
+  while (ball.state.time < duration - 1e-9) {
+    const FrameResult a = advance_frame(universal), b = advance_frame(ball);
+    ASSERT_TRUE(a.ok && b.ok) << a.message << b.message;
+    const Vec3 r = ball_rotation_vector(ball.state.q.data() + f.model.state_q_offset + at);
+    worst = std::max(worst, std::abs(r.y() - universal.state.q[f.model.state_q_offset + at]));
+    off_axis = std::max({off_axis, std::abs(r.x()), std::abs(r.z())});
+    largest = std::max(largest, r.y());
+  }
+  std::printf(
+      "ball shoulder: abducts to %.3f rad; |r_y - q_universal| at most %.1e rad, "
+      "|r_x|, |r_z| %.1e rad\n",
+      largest, worst, off_axis);
+  EXPECT_GT(largest, 1.2);
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_LT(off_axis, 1e-9);
 }
 
 }  // namespace

@@ -204,6 +204,17 @@ TEST(SceneFiguresJsonErrors, ErrorsNameTheirPath) {
       {{{{"joint", {{"kind", "spherical"}, {"swing_limit", 0.5}, {"q0", {0.9, 0.5, 0, 0}}}}}},
        "figures[0].segments[0].joint.q0",
        "swing 1.0"},
+      // A twist limit: spherical joints only, below pi, q0 inside it (a twist of
+      // 2 atan2(0.5, 0.9) = 1.013 rad about the child's z).
+      {{{{"joint", {{"twist_limit", 0.5}}}}},
+       "figures[0].segments[0].joint.twist_limit",
+       "not valid for a revolute joint"},
+      {{{{"joint", {{"kind", "spherical"}, {"twist_limit", 3.5}}}}},
+       "figures[0].segments[0].joint.twist_limit",
+       "must be in (0, pi)"},
+      {{{{"joint", {{"kind", "spherical"}, {"twist_limit", 0.5}, {"q0", {0.9, 0, 0, 0.5}}}}}},
+       "figures[0].segments[0].joint.q0",
+       "twist 1.0"},
   };
   for (const auto& [segments, path, message] : cases) {
     expect_error(json{{"figures", {{{"segments", segments}}}}}, path, message);
@@ -228,12 +239,19 @@ TEST(SceneFiguresJsonErrors, ErrorsNameTheirPath) {
     expect_error(json{{"figures", {{{"segments", pair_of}, {"non_colliding", {pair}}}}}}, path,
                  message);
   }
-  // Controllers: each names a DOF of a single-axis joint once, with gains in range.
+  // Controllers: each names a DOF of a single-axis joint or a ball's rotation-vector component
+  // once, with gains in range.
   const json two = {{{"name", "a"}, {"joint", joint}},
-                    {{"name", "b"}, {"parent", "a"}, {"joint", {{"kind", "spherical"}}}}};
+                    {{"name", "b"}, {"parent", "a"}, {"joint", {{"kind", "spherical"}}}},
+                    {{"name", "c"}, {"parent", "a"}, {"joint", {{"kind", "fixed"}}}}};
   const std::vector<std::tuple<json, std::string, std::string>> controllers = {
-      {{{"joint", "c"}, {"keys", {{0, 1}}}}, "figures[0].controllers[0].joint", "names no segment"},
-      {{{"joint", "b"}, {"keys", {{0, 1}}}}, "figures[0].controllers[0].joint", "single axis"},
+      {{{"joint", "d"}, {"keys", {{0, 1}}}}, "figures[0].controllers[0].joint", "names no segment"},
+      {{{"joint", "c"}, {"keys", {{0, 1}}}},
+       "figures[0].controllers[0].joint",
+       "hangs on a fixed or free joint"},
+      {{{"joint", "b"}, {"dof", 3}, {"keys", {{0, 1}}}},
+       "figures[0].controllers[0].dof",
+       "must be <= 2"},
       {{{"joint", "a"}, {"dof", 1}, {"keys", {{0, 1}}}},
        "figures[0].controllers[0].dof",
        "must be in [0, 0]"},

@@ -289,8 +289,8 @@ TEST(SceneFormat, SchemaForbidsTheKeysOfOtherKinds) {
   }
   // axis and axis2 on spherical, fixed, free; axis2 on the two 1-DOF; stiffness and rest on fixed
   // and free; lower and upper on spherical, fixed, free; limit_restitution on fixed and free;
-  // swing_limit on the five kinds but spherical.
-  EXPECT_EQ(checked, 25);
+  // swing_limit and twist_limit on the five kinds but spherical.
+  EXPECT_EQ(checked, 30);
 }
 
 TEST(SceneFormat, SchemaAcceptsWhatTheParserWritesAndRejectsWhatItRejects) {

@@ -5,6 +5,7 @@
 #include <iterator>
 #include <limits>
 
+#include "control/ball_coordinates.h"
 #include "control/joint_trajectory.h"
 
 namespace pbm {
@@ -28,6 +29,25 @@ void pack(const MracState& m, Real* s) {
 }
 
 }  // namespace
+
+ControlledCoordinate controlled_coordinate(const JointController& c, const Real* q, const Real* v) {
+  if (!c.ball) return {.x = q[c.q_index], .x_dot = v[c.v_index]};
+  const int k = c.def.dof;
+  const Vec3 r = ball_rotation_vector(q + c.q_index);
+  const Mat3 J = ball_rate_map(r);
+  const Vec3 omega(v[c.v_index - k], v[c.v_index - k + 1], v[c.v_index - k + 2]);
+  return {.x = r[k], .x_dot = J.row(k).dot(omega), .torque = J.row(k).transpose()};
+}
+
+void add_controller_output(const JointController& c, const ControlledCoordinate& x, Real u,
+                           Real* tau) {
+  if (!c.ball) {
+    tau[c.v_index] += u;
+    return;
+  }
+  Real* omega = tau + c.v_index - c.def.dof;
+  for (int i = 0; i < 3; ++i) omega[i] += u * x.torque[i];
+}
 
 DesiredMotion controller_desired(const JointController& c, Real t,
                                  const std::optional<LiveKey>& held) {

@@ -1,7 +1,8 @@
 // A joint controller compiled against its figure (figure/figure_controllers.h) and the explicit
-// laws a rate evaluation applies: MRAC (15.10)-(15.17) and PD. The stable PD is not explicit: its
-// gains enter the figure's mass matrix (figure/stable_pd.h), so the figure's dynamics stage
-// solves for it; here it only reports its desired motion.
+// laws a rate evaluation applies: MRAC (15.10)-(15.17) and PD, on a single-axis DOF or on one
+// component of a spherical joint's rotation vector (control/ball_coordinates.h). The stable PD is
+// not explicit: its gains enter the figure's mass matrix (figure/stable_pd.h), so the figure's
+// dynamics stage solves for it; here it only reports its desired motion.
 #pragma once
 
 #include <optional>
@@ -18,8 +19,9 @@ inline constexpr int kMracStateSize = 5;
 struct JointController {
   ControllerDef def;
   int segment = 0;        // the driven joint's segment
-  int q_index = 0;        // the DOF's entry in the figure's q
-  int v_index = 0;        // and in its v
+  int q_index = 0;        // the DOF's entry in the figure's q (a ball: its quaternion's first)
+  int v_index = 0;        // and in its v (a ball: omega's component def.dof)
+  bool ball = false;      // drives component def.dof of a spherical joint's rotation vector
   int state_offset = -1;  // MRAC: first of its kMracStateSize entries in the controller slice
   MracSettings mrac;      // from def, for mrac_control
 };
@@ -33,6 +35,19 @@ struct ControlSample {
   Real output = 0;
   bool saturated = false;
 };
+
+// The coordinate a controller drives at the figure's (q, v): a DOF's q and q-dot, or a ball's
+// r_k and r_k-dot (control/ball_coordinates.h); `torque`: the joint forces per unit output u on
+// it, at v_index for a DOF (1) or at the ball's omega (the row J_r^-T e_k).
+struct ControlledCoordinate {
+  Real x = 0, x_dot = 0;
+  Vec3 torque = Vec3::UnitX();
+};
+ControlledCoordinate controlled_coordinate(const JointController& c, const Real* q, const Real* v);
+
+// Adds the output u on the coordinate to the figure's joint forces tau (n_v).
+void add_controller_output(const JointController& c, const ControlledCoordinate& x, Real u,
+                           Real* tau);
 
 // The desired motion a live key sets at time t >= key.time: value + rate (t - time), the rate,
 // zero acceleration.

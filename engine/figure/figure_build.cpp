@@ -246,8 +246,9 @@ CompiledFigure build_figure_model(const FigureDef& def, const std::string& file,
       throw Error(file,
                   path + ".segments[" + std::to_string(l.segment) + "].joint." +
                       (def.segments[l.segment].joint.q0.empty() ? "lower" : "q0"),
-                  l.swing
-                      ? "the initial swing " + std::to_string(q) + " rad is outside swing_limit"
+                  l.swing ? "the initial swing " + std::to_string(q) + " rad is outside swing_limit"
+                  : l.twist
+                      ? "the initial twist " + std::to_string(q) + " rad is outside twist_limit"
                       : "the initial position " + std::to_string(q) + " is outside [lower, upper]");
     }
   }

@@ -44,11 +44,12 @@ std::vector<JointController> compile_figure_controllers(const FigureDef& def,
                   "'" + d.joint + "' names no segment of figure '" + figure.name + "'");
     }
     const SegmentModel& s = figure.segments[c.segment];
-    if (!scalar_joint(s.joint.kind)) {
+    c.ball = s.joint.kind == JointKind::spherical;
+    if (!scalar_joint(s.joint.kind) && !c.ball) {
       throw Error(file, at + ".joint",
                   "segment '" + d.joint +
-                      "' hangs on a joint without a single axis; controllers drive revolute, "
-                      "prismatic and universal joints");
+                      "' hangs on a fixed or free joint; controllers drive revolute, prismatic, "
+                      "universal and spherical joints");
     }
     const int n = joint_v_size(s.joint.kind);
     if (d.dof < 0 || d.dof >= n) {
@@ -56,7 +57,8 @@ std::vector<JointController> compile_figure_controllers(const FigureDef& def,
                   "must be in [0, " + std::to_string(n - 1) + "] for this joint's " +
                       std::to_string(n) + " DOF");
     }
-    c.q_index = s.q_offset + d.dof;
+    // A ball: component dof of the rotation vector of the quaternion at q_offset.
+    c.q_index = s.q_offset + (c.ball ? 0 : d.dof);
     c.v_index = s.v_offset + d.dof;
     for (const JointController& earlier : out) {
       if (earlier.v_index == c.v_index) {

@@ -1,5 +1,6 @@
 // A figure's joint controllers (sec. 15.4) checked against its tree: each drives one DOF of a
-// revolute, prismatic or universal joint (whose q and v entries correspond), no DOF has two, and
+// revolute, prismatic or universal joint (whose q and v entries correspond) or one component of a
+// spherical joint's rotation vector (control/ball_coordinates.h), no DOF has two, and
 // every gain and time is in range. Refusals name the file and the JSON path of the field.
 #pragma once
 

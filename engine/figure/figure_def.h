@@ -52,6 +52,9 @@ struct JointDef {
   // Spherical joints: a swing cone, the angle between the child's z axis and the joint frame's
   // kept within swing_limit (0: none) [rad], in (0, pi).
   Real swing_limit = 0;
+  // Spherical joints: the twist about the child's z axis (the swing-twist decomposition, the
+  // swing leaving it) kept within [-twist_limit, twist_limit] (0: none) [rad], in (0, pi).
+  Real twist_limit = 0;
   Real limit_restitution = 0;  // in [0, 1]
   std::vector<Real> q0;        // initial q (empty: at rest; a quaternion as w, x, y, z)
   std::vector<Real> v0;        // initial v (empty: zero)
@@ -123,8 +126,9 @@ struct SiteActuatorDef {
 // positions; retargeting by a name map"). figure/mocap_retarget.h turns it into servos and site
 // actuators when the figure is compiled.
 struct MocapJointDef {
-  std::string bvh;    // the clip's joint
-  std::string joint;  // the segment whose parent joint (revolute or universal) follows it
+  std::string bvh;  // the clip's joint
+  std::string
+      joint;  // the segment whose parent joint (revolute, universal or spherical) follows it
 };
 struct MocapSiteDef {
   std::string bvh;      // the clip's joint, whose position is the marker

@@ -33,7 +33,7 @@ Real overshoot(const JointLimit& l, Real x) {
 }
 
 int row_width(const JointLimit& l) {
-  return l.swing ? 3 : 1;
+  return l.swing || l.twist ? 3 : 1;
 }
 
 // The coordinate's rate g . v.
@@ -97,11 +97,27 @@ void solve_limit_impulses(const std::vector<JointLimit>& limits, const std::vect
 }  // namespace
 
 Real limit_coordinate(const JointLimit& limit, const Real* q) {
+  if (limit.twist) {
+    // q and -q are one rotation: with w >= 0, psi lies in [-pi, pi].
+    const Real* r = q + limit.q_index;
+    const Real sign = r[0] < 0 ? -1 : 1;
+    return 2 * std::atan2(sign * r[3], sign * r[0]);
+  }
   if (!limit.swing) return q[limit.q_index];
   return std::acos(std::clamp<Real>(swing_cosine(q + limit.q_index), -1, 1));
 }
 
 Vec3 limit_row(const JointLimit& limit, const Real* q) {
+  if (limit.twist) {
+    // psi-dot = 2 (w z-dot - z w-dot) / (w^2 + z^2) with q-dot = q (0, omega) / 2; quadratic in
+    // q, so the same for -q. At a swing of pi (w = z = 0) the twist is undefined: no row.
+    const Real* r = q + limit.q_index;
+    const Vec4 u = Vec4(r[0], r[1], r[2], r[3]).normalized();
+    const Real w = u[0], x = u[1], y = u[2], z = u[3];
+    const Real n = w * w + z * z;
+    if (!(n > 0)) return Vec3::Zero();
+    return Vec3(z * x - w * y, w * x + z * y, n) / n;
+  }
   if (!limit.swing) return Vec3::UnitX();
   const Real* r = q + limit.q_index;
   const Vec4 quaternion = Vec4(r[0], r[1], r[2], r[3]).normalized();
@@ -136,6 +152,24 @@ std::vector<JointLimit> compile_joint_limits(const FigureDef& def, const FigureM
                         .v_index = s.v_offset,
                         .lower = -std::numeric_limits<Real>::infinity(),
                         .upper = jd.swing_limit,
+                        .restitution = jd.limit_restitution});
+    }
+    if (jd.twist_limit != 0) {
+      if (jd.kind != JointKind::spherical) {
+        throw Error(file, at + ".twist_limit", "only spherical joints have a twist limit");
+      }
+      if (!(jd.twist_limit > 0 && jd.twist_limit < std::numbers::pi)) {
+        throw Error(file, at + ".twist_limit", "must be in (0, pi)");
+      }
+      if (!(jd.limit_restitution >= 0 && jd.limit_restitution <= 1)) {
+        throw Error(file, at + ".limit_restitution", "must be in [0, 1]");
+      }
+      limits.push_back({.segment = i,
+                        .twist = true,
+                        .q_index = s.q_offset,
+                        .v_index = s.v_offset,
+                        .lower = -jd.twist_limit,
+                        .upper = jd.twist_limit,
                         .restitution = jd.limit_restitution});
     }
     if (jd.lower.empty() && jd.upper.empty()) continue;
@@ -191,6 +225,15 @@ void size_joint_limits(const FigureModel& figure, const VecX& q0, Real dt,
       // largest eigenvalue of the x, y block of H^-1 (the twist about z is never limited).
       const Eigen::Matrix2d block = H_inv.block<2, 2>(l.v_index, l.v_index);
       inertia = 1 / Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(block).eigenvalues().maxCoeff();
+    }
+    if (l.twist) {
+      // Along the twist's row g at q0: 1 / (g^T H^-1 g) (g = z at no swing).
+      const Vec3 g = limit_row(l, q0.data());
+      const Real along = g.dot(H_inv.block<3, 3>(l.v_index, l.v_index) * g);
+      if (along > 0)
+        inertia = 1 / along;
+      else
+        inertia = 1 / H_inv(l.v_index + 2, l.v_index + 2);
     }
     l.stiffness = inertia * omega * omega;
     l.damping = 2 * inertia * omega;  // critical: 2 sqrt(k I)

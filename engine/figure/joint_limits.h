@@ -1,10 +1,14 @@
 // Joint limits (sec. 15.1.1's "joint limits (with their own impact)"): a revolute, prismatic or
-// universal DOF kept within [lower, upper], and a spherical joint's swing kept within a cone. A
+// universal DOF kept within [lower, upper], a spherical joint's swing kept within a cone and its
+// twist within [-twist_limit, twist_limit]. A
 // limit watches a coordinate x(q) whose rate is a row g of v: a DOF's q with g = e_k, or the swing
 // angle theta between the child's z axis and the joint frame's, cos theta = R_zz (R the joint's
 // rotation, child to joint frame), whose rate is a . omega with a = (w x z) / |w x z|, w = R^T z
-// the joint frame's z in the child's (omega in the child's frame, as the joint's v). Like a
-// segment's contact (sec. 15.3), in two stages:
+// the joint frame's z in the child's (omega in the child's frame, as the joint's v), or the
+// twist psi = 2 atan2(z, w) about the child's z of the joint's quaternion (w, x, y, z) (the
+// swing-twist decomposition q = swing twist), whose rate is g . omega with
+// g = (zx - wy, wx + zy, w^2 + z^2) / (w^2 + z^2). Like a segment's contact (sec. 15.3), in two
+// stages:
 //  - an impact when the coordinate arrives at a limit faster than the figure's impact_speed: the
 //    generalized impulse p along its row g (in place of the contact Jacobian) that leaves it at
 //    -e times its rate, (15.2) in joint space: (G H^-1 G^T) p = -(1 + e) G q-dot for the limits
@@ -30,6 +34,7 @@ namespace pbm {
 struct JointLimit {
   int segment = 0, dof = 0;
   bool swing = false;  // a spherical joint's cone (q_index: its quaternion, v_index: omega)
+  bool twist = false;  // a spherical joint's twist (q_index, v_index as a swing's)
   int q_index = 0, v_index = 0;  // in the figure's q and v
   Real lower = 0, upper = 0;     // [rad or m]; a swing: lower = -infinity, upper = the cone
   Real restitution = 0;
@@ -45,8 +50,9 @@ std::vector<JointLimit> compile_joint_limits(const FigureDef& def, const FigureM
 void size_joint_limits(const FigureModel& figure, const VecX& q0, Real dt,
                        std::vector<JointLimit>& limits);
 
-// The limit's coordinate at q (a DOF's q, or the swing angle [rad]) and its row g of v (1 entry
-// at v_index for a DOF; 3 for a swing), the coordinate's rate being g . v[v_index ..].
+// The limit's coordinate at q (a DOF's q, the swing or the twist angle [rad]) and its row g of v
+// (1 entry at v_index for a DOF; 3 for a swing or a twist), the coordinate's rate being
+// g . v[v_index ..].
 Real limit_coordinate(const JointLimit& limit, const Real* q);
 Vec3 limit_row(const JointLimit& limit, const Real* q);
 

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <numbers>
 
+#include "control/ball_coordinates.h"
 #include "core/error.h"
 #include "core/quaternion.h"
 #include "figure/figure_impact.h"
@@ -91,10 +92,12 @@ MocapTracks retarget_mocap(const FigureDef& def, const FigureModel& figure, cons
     }
     const SegmentModel& segment = figure.segments[s];
     const JointKind kind = segment.joint.kind;
-    if (kind != JointKind::revolute && kind != JointKind::universal) {
+    if (kind != JointKind::revolute && kind != JointKind::universal &&
+        kind != JointKind::spherical) {
       throw Error(file, key + ".joint",
                   "segment '" + map.joint +
-                      "' hangs on a joint that is not revolute or universal; map a site instead");
+                      "' hangs on a joint that is not revolute, universal or spherical; map a "
+                      "site instead");
     }
     for (const ControllerDef& c : def.controllers) {
       if (c.joint == map.joint) {
@@ -112,7 +115,7 @@ MocapTracks retarget_mocap(const FigureDef& def, const FigureModel& figure, cons
     const SpatialTransform joint =
         segment.parent >= 0 ? segment.X_tree * world[segment.parent] : segment.X_tree;
     const Mat3 to_joint = joint.E * place;  // clip (world-aligned) axes -> joint axes
-    const int dofs = kind == JointKind::universal ? 2 : 1;
+    const int dofs = kind == JointKind::spherical ? 3 : kind == JointKind::universal ? 2 : 1;
     std::vector<ControllerDef> dof(dofs);
     for (int d = 0; d < dofs; ++d) {
       ControllerDef& c = dof[d];
@@ -131,6 +134,17 @@ MocapTracks retarget_mocap(const FigureDef& def, const FigureModel& figure, cons
     for (int k = 0; k < clip.frames; ++k) {
       const Mat3 local = rotation_from_quaternion(clip.joints[j].rotation[k]);
       const Mat3 M = to_joint * local * to_joint.transpose();  // the rotation in joint axes
+      if (kind == JointKind::spherical) {
+        // The rotation vector of M (control/ball_coordinates.h), continued from the last key's.
+        const Vec4 u = quaternion_from_rotation(M);
+        Vec3 r = ball_rotation_vector(u.data());
+        if (k > 0) {
+          r = ball_rotation_vector_near(r, Vec3(dof[0].keys.back().value, dof[1].keys.back().value,
+                                                dof[2].keys.back().value));
+        }
+        for (int d = 0; d < 3; ++d) dof[d].keys.push_back({time_of(k), r[d]});
+        continue;
+      }
       Real theta = 0, theta2 = 0;
       if (kind == JointKind::revolute) {
         theta = twist_angle(M, segment.joint.axis);

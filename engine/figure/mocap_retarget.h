@@ -23,7 +23,7 @@ struct MocapTracks {
 
 // The tracks *def.mocap asks of `clip` on `figure`. Refusals name `file` and the key under `path`
 // (the figure's JSON path): a clip joint or figure joint or site that does not exist, a joint
-// that is not revolute or universal, a DOF that already has a controller.
+// that is not revolute, universal or spherical, a DOF that already has a controller.
 MocapTracks retarget_mocap(const FigureDef& def, const FigureModel& figure, const MocapClip& clip,
                            const std::string& file, const std::string& path);
 

@@ -126,11 +126,19 @@ constexpr auto kJointFields = std::to_array<Field<JointDef>>({
          .kinds = kind_bit(JointKind::spherical),
          .description = "A swing cone: the angle between the child's z axis and the joint "
                         "frame's stays within it (0: none; below pi)."}),
+    value<&JointDef::twist_limit>(
+        {.key = "twist_limit",
+         .unit = "rad",
+         .range = kNonNegative,
+         .kinds = kind_bit(JointKind::spherical),
+         .description = "The twist about the child's z axis (its swing aside) stays within "
+                        "[-twist_limit, twist_limit] (0: none; below pi)."}),
     value<&JointDef::limit_restitution>(
         {.key = "limit_restitution",
          .range = kUnitInterval,
          .kinds = kHasSpring,
-         .description = "e of (15.2) when a DOF strikes its limit (or a swing its cone): "
+         .description = "e of (15.2) when a DOF strikes its limit (or a swing its cone, a "
+                        "twist its limit): "
                         "q-dot+ = -e q-dot-."}),
     joint_numbers<&JointDef::q0>(
         {.key = "q0",
@@ -189,12 +197,14 @@ constexpr auto kControllerFields = std::to_array<Field<ControllerDef>>({
         {.key = "joint",
          .required = true,
          .non_empty = true,
-         .description = "The segment whose parent joint it drives (revolute, prismatic or "
-                        "universal)."}),
-    value<&ControllerDef::dof>({.key = "dof",
-                                .range = kNonNegative,
-                                .limit = 1,
-                                .description = "Which of the joint's DOFs (universal: 0 or 1)."}),
+         .description = "The segment whose parent joint it drives (revolute, prismatic, "
+                        "universal or spherical)."}),
+    value<&ControllerDef::dof>(
+        {.key = "dof",
+         .range = kNonNegative,
+         .limit = 2,
+         .description = "Which of the joint's DOFs (universal: 0 or 1; spherical: the component "
+                        "0, 1 or 2 of its rotation vector)."}),
     choice<&ControllerDef::interpolation, kInterpolationNames>(
         {.key = "interpolation",
          .description = "Of the trajectory between keys; its derivatives give the desired "
@@ -350,8 +360,8 @@ constexpr auto kMocapJointFields = std::to_array<Field<MocapJointDef>>({
     value<&MocapJointDef::joint>({.key = "joint",
                                   .required = true,
                                   .non_empty = true,
-                                  .description = "The segment whose parent joint (revolute or "
-                                                 "universal) takes its angles."}),
+                                  .description = "The segment whose parent joint (revolute, "
+                                                 "universal or spherical) takes its angles."}),
 });
 
 constexpr auto kMocapSiteFields = std::to_array<Field<MocapSiteDef>>({

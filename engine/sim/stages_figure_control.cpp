@@ -124,9 +124,11 @@ void figure_controllers(const RateContext& c) {
       const JointController& ctrl = figure.controllers[k];
       if (ctrl.def.kind == ControllerKind::stable_pd) continue;
       const int s = std::max(ctrl.state_offset, 0);
-      w.tau[ctrl.v_index] += explicit_control(ctrl, c.t, q[ctrl.q_index], v[ctrl.v_index],
-                                              state + s, rate + s, control_input(c.inputs, f, k))
-                                 .output;
+      const ControlledCoordinate x = controlled_coordinate(ctrl, q, v);
+      const Real u = explicit_control(ctrl, c.t, x.x, x.x_dot, state + s, rate + s,
+                                      control_input(c.inputs, f, k))
+                         .output;
+      add_controller_output(ctrl, x, u, w.tau.data());
     }
     if (!figure.site_actuators.empty()) add_site_actuator_forces(c, f);
   }
@@ -194,14 +196,21 @@ void stable_pd_dynamics(const RateContext& c, std::size_t f, std::span<const For
       if (ctrl.def.kind != ControllerKind::stable_pd || (w.Kp[i] == 0 && w.Kd[i] == 0)) continue;
       const Real limit = limit_of(ctrl);
       if (!(std::abs(w.tau_pd[i]) > limit)) continue;
-      w.tau_ext[i] += std::clamp(w.tau_pd[i], -limit, limit);
-      w.tau[i] += std::clamp(w.tau_pd[i], -limit, limit);
+      // The output on its coordinate (a ball's r_k: the torque J_r^-T e_k per unit).
+      const ControlledCoordinate x = controlled_coordinate(ctrl, fw.q.data(), fw.v.data());
+      add_controller_output(ctrl, x, std::clamp(w.tau_pd[i], -limit, limit), w.tau_ext.data());
+      add_controller_output(ctrl, x, std::clamp(w.tau_pd[i], -limit, limit), w.tau.data());
       w.Kp[i] = w.Kd[i] = 0;
       cut = true;
     }
     if (!cut) break;
   }
-  w.tau += w.tau_pd;
+  for (const JointController& ctrl : figure.controllers) {
+    const int i = ctrl.v_index;
+    if (ctrl.def.kind != ControllerKind::stable_pd || (w.Kp[i] == 0 && w.Kd[i] == 0)) continue;
+    add_controller_output(ctrl, controlled_coordinate(ctrl, fw.q.data(), fw.v.data()), w.tau_pd[i],
+                          w.tau.data());
+  }
   c.v_dot.segment(model.state_v_offset, model.n_v) = w.qdd;
 }
 
@@ -233,7 +242,8 @@ void measure_figure_controllers(const CompiledFigure& figure, std::size_t f, con
   const Real* v = state.v.data() + figure.model.state_v_offset;
   for (std::size_t k = 0; k < figure.controllers.size(); ++k) {
     const JointController& c = figure.controllers[k];
-    const Real qi = q[c.q_index], vi = v[c.v_index];
+    const ControlledCoordinate x = controlled_coordinate(c, q, v);
+    const Real qi = x.x, vi = x.x_dot;
     const std::optional<LiveKey> held = control_input(inputs, f, k);
     if (c.def.kind != ControllerKind::stable_pd) {
       Real rate[kMracStateSize];

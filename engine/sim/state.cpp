@@ -32,7 +32,8 @@ State initial_state(const Model& model) {
     Real* control = st.q.data() + figure.state_control_offset;
     for (const JointController& c : figure.controllers) {
       if (c.state_offset < 0) continue;
-      controller_start(c, figure.q0[c.q_index], figure.v0[c.v_index], control + c.state_offset);
+      const ControlledCoordinate x = controlled_coordinate(c, figure.q0.data(), figure.v0.data());
+      controller_start(c, x.x, x.x_dot, control + c.state_offset);
     }
   }
   return st;
