@@ -103,6 +103,29 @@ TEST(FigureControlWorld, MracStepsAsTheControllerIntegratedAloneAndSettlesAtItsT
   }
 }
 
+// MRAC's adaptation stiffens as 1 / t_s^2 ((15.15)-(15.17)): at t_s = 0.01 s the arm needs a step
+// far below 0.5 ms (it runs at 1e-7 s), so the guard's halvings do not save it and the run stops
+// with a message that names the controller and what to change; at t_s = 0.1 s the same step
+// runs.
+TEST(FigureControlWorld, AnMracTooFastForTheStepStopsNamingItsSettlingTime) {
+  for (const Real t_s : {0.01, 0.1}) {
+    const std::string mrac =
+        R"({"joint": "link", "keys": [[0, 1]], "settling_time": )" + std::to_string(t_s) + "}";
+    Simulation sim(parse_scene(
+        arm_scene(1, mrac, R"({"dt": 0.0005, "fps": 100, "integrator": "rk4"})"), "arm.json"));
+    FrameResult r;
+    for (int frame = 0; frame < 20 && (frame == 0 || r.ok); ++frame) r = advance_frame(sim);
+    if (t_s == 0.1) {
+      EXPECT_TRUE(r.ok) << r.message;
+      continue;
+    }
+    ASSERT_FALSE(r.ok);
+    std::printf("t_s = %.2f s: %s\n", t_s, r.message.c_str());
+    EXPECT_NE(r.message.find("t_s down to 0.01 s on 'link'"), std::string::npos) << r.message;
+    EXPECT_NE(r.message.find("a longer settling_time"), std::string::npos) << r.message;
+  }
+}
+
 TEST(FigureControlWorld, TheTorqueLimitHoldsAndFreezesTheIntegrals) {
   // Gravity turns the level arm down (+q) with m g l cos(q), 4.905 N m at first; a limit of 3 N m
   // cannot hold it up, let alone lift it to the target 1 rad above: the arm sinks until gravity's

@@ -1,6 +1,7 @@
 #include "sim/stages_figures.h"
 
 #include <algorithm>
+#include <cstdio>
 
 #include "collide/obstacle.h"
 #include "core/quaternion.h"
@@ -543,6 +544,28 @@ void measure_figures(const Model& model, const Inputs& inputs, const State& stat
   }
 }
 
+namespace {
+
+// What to change when a figure under MRAC fails: the adaptation's error signal is weighted as
+// the reference model's dynamics, 16 / t_s^2 and 4 / t_s (15.15), so its gains (15.16), (15.17)
+// stiffen as 1 / t_s^2 and a short t_s needs a far shorter step (a 1 kg, 1 m link under t_s =
+// 0.01 s runs at 1e-7 s, not at 1e-6 s). Empty without MRAC.
+std::string mrac_hint(const CompiledFigure& figure) {
+  const JointController* fastest = nullptr;
+  for (const JointController& c : figure.controllers) {
+    if (c.def.kind != ControllerKind::mrac) continue;
+    if (!fastest || c.mrac.settling_time < fastest->mrac.settling_time) fastest = &c;
+  }
+  if (!fastest) return {};
+  char text[96];
+  std::snprintf(text, sizeof text, "%g s", fastest->mrac.settling_time);
+  return "; its MRAC adapts with gains that stiffen as 1 / t_s^2 (15.15)-(15.17), t_s down to " +
+         std::string(text) + " on '" + fastest->def.joint +
+         "': a longer settling_time or smaller alpha and beta let it run at this step";
+}
+
+}  // namespace
+
 std::string describe_figure_failure(const Model& model, const State& state) {
   for (const CompiledFigure& compiled : model.figures) {
     const FigureModel& figure = compiled.model;
@@ -553,11 +576,12 @@ std::string describe_figure_failure(const Model& model, const State& state) {
           state.v.segment(figure.state_v_offset + s.v_offset, joint_v_size(s.joint.kind));
       if (q.allFinite() && v.allFinite()) continue;
       return "figure '" + figure.name + "', segment '" + s.name + "': its joint's " +
-             (q.allFinite() ? "velocity" : "position") + " became NaN or infinite";
+             (q.allFinite() ? "velocity" : "position") + " became NaN or infinite" +
+             mrac_hint(compiled);
     }
     if (!state.q.segment(compiled.state_control_offset, compiled.n_control).allFinite()) {
       return "figure '" + figure.name + "': its controllers' state (MRAC's model and integrals, " +
-             "the actuators' work) became NaN or infinite";
+             "the actuators' work) became NaN or infinite" + mrac_hint(compiled);
     }
   }
   return {};
