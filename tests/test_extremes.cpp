@@ -91,6 +91,24 @@ Scene figure_chain(int n, IntegratorKind integrator, Real mass, Real damping = 0
   return s;
 }
 
+// A free `shape` of `mass` kg whose centre starts at `at` moving at `velocity` (a figure of one
+// segment on a free joint, ch. 15).
+FigureDef free_segment(const std::string& name, SegmentShapeKind shape, const Vec3& size, Real mass,
+                       const Vec3& at, const Vec3& velocity) {
+  FigureDef f;
+  f.name = name;
+  SegmentDef seg;
+  seg.name = name;
+  seg.joint.kind = JointKind::free;
+  seg.joint.q0 = {at.x(), at.y(), at.z(), 1, 0, 0, 0};
+  seg.joint.v0 = {0, 0, 0, velocity.x(), velocity.y(), velocity.z()};
+  seg.shape.kind = shape;
+  seg.shape.size = size;
+  seg.mass = mass;
+  f.segments = {seg};
+  return f;
+}
+
 // A 5-link chain of 1 kg links with a controller on every joint holding 0.5 rad, the
 // controller's settings changed by `change`.
 template <typename Change>
@@ -247,6 +265,32 @@ std::vector<Cell> cells() {
                [] { return figure_chain(5, IntegratorKind::euler, 1, 1e6); }});
   c.push_back(
       {"figure: segment mass 1e-6 kg", [] { return figure_chain(5, IntegratorKind::rk4, 1e-6); }});
+  // Impacts at 10 m/s (sec. 15.3): a segment on the ground, two figures head on, a segment into
+  // the deformable ball (5.2.2 with the segment as one body).
+  c.push_back({"figure: a 2 kg box striking the ground at 10 m/s", [] {
+                 Scene s = ball_on_ground();
+                 s.bodies.clear();
+                 s.figures = {free_segment("box", SegmentShapeKind::box, Vec3(0.2, 0.2, 0.2), 2,
+                                           Vec3(0, 0, 0.5), Vec3(0, 0, -10))};
+                 return s;
+               }});
+  c.push_back({"figure: two 1 kg spheres meeting head on at 10 m/s each", [] {
+                 Scene s = ball_on_ground();
+                 s.bodies.clear();
+                 s.gravity = Vec3::Zero();
+                 s.figures = {free_segment("left", SegmentShapeKind::sphere, Vec3::Constant(0.2), 1,
+                                           Vec3(-0.5, 0, 1), Vec3(10, 0, 0)),
+                              free_segment("right", SegmentShapeKind::sphere, Vec3::Constant(0.2),
+                                           1, Vec3(0.5, 0, 1), Vec3(-10, 0, 0))};
+                 return s;
+               }});
+  c.push_back({"figure: a 5 kg capsule striking the local ball at 10 m/s", [] {
+                 Scene s = ball_on_ground();
+                 s.bodies[0].position = Vec3(0, 0, 1);
+                 s.figures = {free_segment("bat", SegmentShapeKind::capsule, Vec3(0.1, 0.1, 0.3), 5,
+                                           Vec3(0, 0, 2.8), Vec3(0, 0, -10))};
+                 return s;
+               }});
   // Joint controllers (sec. 15.4) on every joint of the chain, driving it to hang at 0.5 rad.
   c.push_back({"figure: MRAC t_s 0.01 s on every joint, rk4", [] {
                  return controlled_chain(IntegratorKind::rk4,
@@ -271,6 +315,27 @@ std::vector<Cell> cells() {
                    d.kp = 1e9;
                    d.kd = 1e6;
                  });
+               }});
+  // Stable PD servos at the same gains on ball joints: each spherical joint's three components of
+  // its rotation vector (control/ball_coordinates.h), targets 0.5 rad about y.
+  c.push_back({"figure: stable PD kp 1e9, kd 1e6 on ball joints, euler", [] {
+                 Scene s = figure_chain(5, IntegratorKind::euler, 1);
+                 FigureDef& chain = s.figures[0];
+                 chain.segments[0].joint.q0 = {0.7071067811865476, 0, 0.7071067811865476, 0};
+                 for (SegmentDef& seg : chain.segments) {
+                   seg.joint.kind = JointKind::spherical;
+                   for (int k = 0; k < 3; ++k) {
+                     ControllerDef d;
+                     d.kind = ControllerKind::stable_pd;
+                     d.joint = seg.name;
+                     d.dof = k;
+                     d.keys = {{0, k == 1 ? 0.5 : 0.0}};
+                     d.kp = 1e9;
+                     d.kd = 1e6;
+                     chain.controllers.push_back(d);
+                   }
+                 }
+                 return s;
                }});
   return c;
 }
