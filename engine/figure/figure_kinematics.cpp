@@ -108,10 +108,18 @@ void size_figure_workspace(const FigureModel& figure, FigureWorkspace& ws) {
   ws.D_inv.resize(n);
   ws.u.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const int dof = joint_v_size(figure.segments[i].joint.kind);
+    const JointModel& joint = figure.segments[i].joint;
+    const int dof = joint_v_size(joint.kind);
     ws.U[i].setZero(6, dof);
     ws.D_inv[i].setZero(dof, dof);
     ws.u[i].setZero(dof);
+    // Only a universal joint's S depends on q (figure/joint.h); the others' are set here once,
+    // with the axis a single-DOF joint moves along, and figure_kinematics leaves them.
+    Real sign = 1;
+    ws.axis_column[i] = joint_axis_column(joint, sign);
+    ws.axis_sign[i] = sign;
+    const Real rest[7] = {1, 0, 0, 0, 0, 0, 0};
+    joint_motion_subspace(joint, rest, ws.S[i]);
   }
 }
 
@@ -132,6 +140,22 @@ SpatialTransform up_transform(const SegmentModel& segment, const Real* q, int k,
   return X;
 }
 
+// v x (rate e_column) (motion_cross with a single nonzero entry): a revolute axis e_k (column
+// k) gives [w x e_k; v_O x e_k] rate, a prismatic one (3 + k) [0; w x e_k] rate.
+Vec6 axis_cross(const Vec6& v, int column, Real rate) {
+  const int k = column % 3, i = (k + 1) % 3, j = (k + 2) % 3;
+  // a x e_k = a_j e_i - a_i e_j.
+  Vec6 out = Vec6::Zero();
+  const int first = column < 3 ? 0 : 3;  // where w x e_k goes
+  out[first + i] = v[j] * rate;
+  out[first + j] = -v[i] * rate;
+  if (column < 3) {
+    out[3 + i] = v[3 + j] * rate;
+    out[3 + j] = -v[3 + i] * rate;
+  }
+  return out;
+}
+
 }  // namespace
 
 void figure_kinematics(const FigureModel& figure, const Real* q, const Real* v,
@@ -139,12 +163,11 @@ void figure_kinematics(const FigureModel& figure, const Real* q, const Real* v,
   for (int i = 0; i < figure.size(); ++i) {
     const SegmentModel& segment = figure.segments[i];
     const Real* q_i = q + segment.q_offset;
-    Real sign = 1;
-    const int column = joint_axis_column(segment.joint, sign);
-    ws.axis_column[i] = column;
-    ws.axis_sign[i] = sign;
-    ws.X_up[i] = up_transform(segment, q_i, column, sign);
-    joint_motion_subspace(segment.joint, q_i, ws.S[i]);
+    const int column = ws.axis_column[i];
+    ws.X_up[i] = up_transform(segment, q_i, column, ws.axis_sign[i]);
+    if (segment.joint.kind == JointKind::universal) {
+      joint_motion_subspace(segment.joint, q_i, ws.S[i]);
+    }
     if (v == nullptr) {
       ws.v[i].setZero();
       ws.c[i].setZero();
@@ -156,6 +179,15 @@ void figure_kinematics(const FigureModel& figure, const Real* q, const Real* v,
     if (n_v == 0) {
       ws.v[i] = transform_to_child(ws.X_up[i], v_parent);
       ws.c[i].setZero();
+      continue;
+    }
+    if (column >= 0) {
+      // Along a coordinate axis, v_J = rate e_column and c = v x v_J has four terms.
+      const Real rate = ws.axis_sign[i] * v_i[0];
+      Vec6 v_J = Vec6::Zero();
+      v_J[column] = rate;
+      ws.v[i] = transform_to_child(ws.X_up[i], v_parent, v_J);
+      ws.c[i] = axis_cross(ws.v[i], column, rate);
       continue;
     }
     // v_J = S qdot; a single column as a fixed-size vector (no dynamic-size product).
