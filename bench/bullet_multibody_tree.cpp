@@ -2,16 +2,13 @@
 
 #include <Eigen/Geometry>
 
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wshadow"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wunused-variable"
-#pragma GCC diagnostic ignored "-Wpedantic"
-#pragma GCC diagnostic ignored "-Wclass-memaccess"
-#pragma GCC diagnostic ignored "-Wdeprecated-copy"
+// Bullet, with its warnings silenced here only.
+#include "bullet_warnings_off.h"
+
 #include <BulletDynamics/Featherstone/btMultiBody.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLink.h>
-#pragma GCC diagnostic pop
+
+#include "bullet_warnings_on.h"
 
 namespace pbm::bench {
 

@@ -4,14 +4,9 @@
 #include <cassert>
 #include <limits>
 
-// Bullet's headers are not clean under our warning set; silence them here only, never our code.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wshadow"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wunused-variable"
-#pragma GCC diagnostic ignored "-Wpedantic"
-#pragma GCC diagnostic ignored "-Wclass-memaccess"
-#pragma GCC diagnostic ignored "-Wdeprecated-copy"
+// Bullet, with its warnings silenced here only.
+#include "bullet_warnings_off.h"
+
 #include <BulletCollision/BroadphaseCollision/btDbvtBroadphase.h>
 #include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
 #include <BulletCollision/CollisionShapes/btBoxShape.h>
@@ -22,7 +17,8 @@
 #include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
 #include <LinearMath/btConvexHullComputer.h>
-#pragma GCC diagnostic pop
+
+#include "bullet_warnings_on.h"
 
 namespace pbm::bench {
 

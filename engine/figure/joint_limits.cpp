@@ -136,42 +136,29 @@ std::vector<JointLimit> compile_joint_limits(const FigureDef& def, const FigureM
     const JointDef& jd = def.segments[i].joint;
     const SegmentModel& s = figure.segments[i];
     const std::string at = path + ".segments[" + std::to_string(i) + "].joint";
-    if (jd.swing_limit != 0) {
+    // A spherical joint's swing cone and twist limit: each an angle in (0, pi).
+    const auto ball_limit = [&](Real angle, const char* key, const char* what, bool swing) {
+      if (angle == 0) return;
       if (jd.kind != JointKind::spherical) {
-        throw Error(file, at + ".swing_limit", "only spherical joints have a swing cone");
+        throw Error(file, at + "." + key, std::string("only spherical joints have a ") + what);
       }
-      if (!(jd.swing_limit > 0 && jd.swing_limit < std::numbers::pi)) {
-        throw Error(file, at + ".swing_limit", "must be in (0, pi)");
+      if (!(angle > 0 && angle < std::numbers::pi)) {
+        throw Error(file, at + "." + key, "must be in (0, pi)");
       }
       if (!(jd.limit_restitution >= 0 && jd.limit_restitution <= 1)) {
         throw Error(file, at + ".limit_restitution", "must be in [0, 1]");
       }
       limits.push_back({.segment = i,
-                        .swing = true,
+                        .swing = swing,
+                        .twist = !swing,
                         .q_index = s.q_offset,
                         .v_index = s.v_offset,
-                        .lower = -std::numeric_limits<Real>::infinity(),
-                        .upper = jd.swing_limit,
+                        .lower = swing ? -std::numeric_limits<Real>::infinity() : -angle,
+                        .upper = angle,
                         .restitution = jd.limit_restitution});
-    }
-    if (jd.twist_limit != 0) {
-      if (jd.kind != JointKind::spherical) {
-        throw Error(file, at + ".twist_limit", "only spherical joints have a twist limit");
-      }
-      if (!(jd.twist_limit > 0 && jd.twist_limit < std::numbers::pi)) {
-        throw Error(file, at + ".twist_limit", "must be in (0, pi)");
-      }
-      if (!(jd.limit_restitution >= 0 && jd.limit_restitution <= 1)) {
-        throw Error(file, at + ".limit_restitution", "must be in [0, 1]");
-      }
-      limits.push_back({.segment = i,
-                        .twist = true,
-                        .q_index = s.q_offset,
-                        .v_index = s.v_offset,
-                        .lower = -jd.twist_limit,
-                        .upper = jd.twist_limit,
-                        .restitution = jd.limit_restitution});
-    }
+    };
+    ball_limit(jd.swing_limit, "swing_limit", "swing cone", true);
+    ball_limit(jd.twist_limit, "twist_limit", "twist limit", false);
     if (jd.lower.empty() && jd.upper.empty()) continue;
     const bool scalar = jd.kind == JointKind::revolute || jd.kind == JointKind::prismatic ||
                         jd.kind == JointKind::universal;

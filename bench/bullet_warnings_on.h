@@ -1,0 +1,2 @@
+// Closes the region bullet_warnings_off.h opened: our warnings apply again. No include guard.
+#pragma GCC diagnostic pop
