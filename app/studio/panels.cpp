@@ -716,6 +716,17 @@ void keyboard_lever(Studio& studio, const Scene& scene) {
   studio.lever_direction = direction;
 }
 
+// A controller's DOF as the panel names it: its index on a single-axis joint, or on a spherical
+// joint the component of the rotation vector it drives (control/ball_coordinates.h).
+std::string dof_label(const FigureDef& figure, const ControllerDef& c) {
+  for (const SegmentDef& s : figure.segments) {
+    if (s.name == c.joint && s.joint.kind == JointKind::spherical && c.dof >= 0 && c.dof < 3) {
+      return std::string("r_") + "xyz"[c.dof];
+    }
+  }
+  return std::to_string(c.dof);
+}
+
 // The controlled DOFs' trajectories over the last seconds (figs. 15.7, 15.8): desired (white),
 // the MRAC reference model (yellow; the desired for PD servos) and actual (cyan), with the
 // actuator's output and whether it is at its limit; each with its target, jog lever and the
@@ -736,9 +747,9 @@ void controllers_panel(Studio& studio) {
       const ControllerDef& c = scene.figures[fi].controllers[ci];
       const bool sampled = fi < f.figures.size() && ci < f.figures[fi].controllers.size();
       const ControlSample now = sampled ? f.figures[fi].controllers[ci] : ControlSample{};
-      ImGui::Text("%s / %s [%d] (%s): u %.4g%s", scene.figures[fi].name.c_str(), c.joint.c_str(),
-                  c.dof, name_of(kControllerKindNames, c.kind), now.output,
-                  now.saturated ? ", at its limit" : "");
+      ImGui::Text("%s / %s [%s] (%s): u %.4g%s", scene.figures[fi].name.c_str(), c.joint.c_str(),
+                  dof_label(scene.figures[fi], c).c_str(), name_of(kControllerKindNames, c.kind),
+                  now.output, now.saturated ? ", at its limit" : "");
       control_target(studio, static_cast<int>(fi), static_cast<int>(ci), now);
       control_jog(studio, static_cast<int>(fi), static_cast<int>(ci), now);
       ImGui::SameLine();
