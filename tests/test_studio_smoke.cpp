@@ -157,11 +157,8 @@ TEST(StudioSmoke, TheTradePanelMeasuresTheSceneAndAppliesAPointOfItsFront) {
   EXPECT_DOUBLE_EQ(t["shape_inertia_time"].get<double>(), 0.031);
 }
 
-// The keyboard lever of the Controllers panel, held as a user holds Page Up: the jog starts from
-// the controller's desired position (0.1 rad, its one key), records [t0, 0.1, speed] and, at the
-// release, [t1, 0.1 + speed (t1 - t0), 0], and the hold is one undo step. (This test found Page
-// Up jogging down: ImGui 1.86's IsKeyDown takes a key index, not an ImGuiKey.)
-TEST(StudioSmoke, PageUpJogsTheKeyboardLeversControllerAndRecordsIt) {
+// A one-link arm under a stable PD servo whose target is 0.1 rad (its one key).
+std::string lever_arm_scene() {
   const fs::path file = fs::path(PBM_BINARY_DIR) / "tests/smoke/lever-arm.json";
   fs::create_directories(file.parent_path());
   std::ofstream(file) << R"({"name": "lever-arm", "solver": {"dt": 0.001, "fps": 30},
@@ -169,7 +166,15 @@ TEST(StudioSmoke, PageUpJogsTheKeyboardLeversControllerAndRecordsIt) {
         "shape": {"kind": "capsule", "size": [0.04, 0.04, 0.2], "center": [0, 0, -0.25]}}],
       "controllers": [{"kind": "stable_pd", "joint": "arm", "kp": 200, "kd": 20,
                        "keys": [[0, 0.1]]}]}]})";
-  const SmokeResult r = smoke("lever", "--keys 6:18", file.string());
+  return file.string();
+}
+
+// The keyboard lever of the Controllers panel, held as a user holds Page Up: the jog starts from
+// the controller's desired position (0.1 rad, its one key), records [t0, 0.1, speed] and, at the
+// release, [t1, 0.1 + speed (t1 - t0), 0], and the hold is one undo step. (This test found Page
+// Up jogging down: ImGui 1.86's IsKeyDown takes a key index, not an ImGuiKey.)
+TEST(StudioSmoke, PageUpJogsTheKeyboardLeversControllerAndRecordsIt) {
+  const SmokeResult r = smoke("lever", "--keys 6:18", lever_arm_scene());
   ASSERT_EQ(r.code, 0) << r.output;
   const nlohmann::json& live = r.report["figures"][0]["live"][0];
   std::printf("keyboard lever: live keys %s, undo '%s'\n", live.dump().c_str(),
@@ -190,6 +195,36 @@ TEST(StudioSmoke, PageUpJogsTheKeyboardLeversControllerAndRecordsIt) {
   EXPECT_NEAR(live[1][1].get<double>(), 0.1 + speed * (t1 - t0), 1e-9);
   EXPECT_EQ(live[1][2].get<double>(), 0.0);
   EXPECT_EQ(r.report["undo"], "lever");
+}
+
+// The jog lever of the Controllers panel dragged with the mouse as a user drags it (pressed at
+// frame 6, pushed 4 px right a frame, let go at frame 18): each change of its speed is a live key
+// starting where the last one's motion got to, from the desired 0.1 rad; the speed only grows
+// while it is pushed (0.002 /s a pixel, the panel's scale for a target under 1), is back to 0 at
+// the end, and the hold is one undo step.
+TEST(StudioSmoke, DraggingTheJogLeverMovesTheTargetAtItsSpeedAndRecordsIt) {
+  const SmokeResult r = smoke("jog", "--jog 6:18", lever_arm_scene());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const nlohmann::json& live = r.report["figures"][0]["live"][0];
+  std::printf("jog lever: live keys %s, undo '%s'\n", live.dump().c_str(),
+              r.report["undo"].get<std::string>().c_str());
+  ASSERT_GE(live.size(), 3u);
+  EXPECT_NEAR(live[0][1].get<double>(), 0.1, 1e-12);
+  EXPECT_GT(live[0][2].get<double>(), 0.0);
+  const double most = 0.002 * 4 * 11;  // 11 pushes of 4 px
+  for (std::size_t k = 0; k + 1 < live.size(); ++k) {
+    const double t = live[k][0], value = live[k][1], rate = live[k][2];
+    const double t_next = live[k + 1][0], value_next = live[k + 1][1];
+    EXPECT_GT(t_next, t);
+    EXPECT_NEAR(value_next, value + rate * (t_next - t), 1e-9) << "key " << k;
+    if (k + 2 < live.size()) {
+      EXPECT_GE(live[k + 1][2].get<double>(), rate) << "key " << k;
+    }
+    EXPECT_LE(rate, most + 1e-12);
+  }
+  EXPECT_EQ(live.back()[2].get<double>(), 0.0);
+  EXPECT_GT(live.back()[1].get<double>(), 0.1);
+  EXPECT_EQ(r.report["undo"], "jog");
 }
 
 }  // namespace

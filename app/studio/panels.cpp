@@ -664,6 +664,10 @@ void control_jog(Studio& studio, int figure, int controller, const ControlSample
   ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.6f);
   const bool changed = ImGui::DragScalar("jog /s", ImGuiDataType_Double, &rate,
                                          static_cast<float>(speed), nullptr, nullptr, "%+.4f");
+  if (figure == 0 && controller == 0) {
+    const ImVec2 lo = ImGui::GetItemRectMin(), hi = ImGui::GetItemRectMax();
+    studio.first_jog_rect = {lo.x, lo.y, hi.x, hi.y};
+  }
   if (ImGui::IsItemActivated() && studio.status.scene) {
     studio.jog_figure = figure;
     studio.jog_index = controller;

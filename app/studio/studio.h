@@ -67,6 +67,9 @@ struct Studio {
   // to 0 when released. Its undo step shares control_scene_before (one widget at a time).
   int jog_figure = -1, jog_index = -1;
   double jog_rate = 0;
+  // The first controller's jog lever as last drawn (x0, y0, x1, y1 in viewport pixels; empty
+  // before it is), where pbm-studio --smoke --jog takes hold of it.
+  std::array<float, 4> first_jog_rect{};
   // The keyboard lever: Page Up / Page Down held jog one controller (figure, controller) at
   // +-lever_speed; lever_direction is the keys' state last frame (-1, 0, 1), and the hold is one
   // undo step (lever_scene_before).

@@ -6,6 +6,8 @@
 #include <QMouseEvent>
 #include <QSurfaceFormat>
 #include <QTimer>
+#include <algorithm>
+#include <array>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -30,15 +32,31 @@ struct SmokeOptions {
   // --keys F0:F1: Page Up held from frame F0 to frame F1, the keyboard lever of the Controllers
   // panel (its first controller unless chosen); the report lists every controller's live keys.
   std::optional<std::pair<int, int>> keys;
+  // --jog F0:F1: the first controller's jog lever pressed at frame F0, pushed right kJogPixels
+  // a frame and let go at F1, as a user drags it; the report lists the live keys it recorded.
+  std::optional<std::pair<int, int>> jog;
 };
 
+constexpr double kJogPixels = 4;
+
 int usage(const char* why) {
-  std::cerr << "error: " << why
-            << "\nusage: pbm-studio [scene.json]\n"
-               "       pbm-studio --smoke <scene.json> --frames N [--drag x0,y0:x1,y1] "
-               "[--overlays] [--tradeoff SECONDS] [--keys F0:F1] --screenshot out.png "
-               "[--report out.json]\n";
+  std::cerr
+      << "error: " << why
+      << "\nusage: pbm-studio [scene.json]\n"
+         "       pbm-studio --smoke <scene.json> --frames N [--drag x0,y0:x1,y1] "
+         "[--overlays] [--tradeoff SECONDS] [--keys F0:F1] [--jog F0:F1] --screenshot out.png "
+         "[--report out.json]\n";
   return 2;
+}
+
+// "F0:F1" with 0 <= F0 and F0 + min_span <= F1.
+std::optional<std::pair<int, int>> frame_range(const std::optional<QString>& text, int min_span) {
+  const QStringList ends = text ? text->split(':') : QStringList();
+  bool ok0 = false, ok1 = false;
+  const int f0 = ends.size() == 2 ? ends[0].toInt(&ok0) : 0;
+  const int f1 = ends.size() == 2 ? ends[1].toInt(&ok1) : 0;
+  if (!ok0 || !ok1 || f0 < 0 || f1 < f0 + min_span) return std::nullopt;
+  return std::make_pair(f0, f1);
 }
 
 // Drives the window frame by frame: step, wait for the runner to show it, move the mouse.
@@ -52,12 +70,17 @@ class SmokeRun : public QObject {
   int result() const { return result_; }
 
  private:
+  // A drag in window pixels with Ctrl held: the mouse spring.
   void send(QEvent::Type type, QPointF window_point, Qt::MouseButton button,
             Qt::MouseButtons buttons) {
+    const QPointF local = window_.viewport()->mapFrom(&window_, window_point.toPoint());
+    send_local(type, local, button, buttons, Qt::ControlModifier);
+  }
+
+  void send_local(QEvent::Type type, QPointF local, Qt::MouseButton button,
+                  Qt::MouseButtons buttons, Qt::KeyboardModifiers modifiers) {
     pbm::Viewport* viewport = window_.viewport();
-    const QPointF local = viewport->mapFrom(&window_, window_point.toPoint());
-    QMouseEvent event(type, local, viewport->mapToGlobal(local), button, buttons,
-                      Qt::ControlModifier);
+    QMouseEvent event(type, local, viewport->mapToGlobal(local), button, buttons, modifiers);
     QApplication::sendEvent(viewport, &event);
   }
 
@@ -103,6 +126,26 @@ class SmokeRun : public QObject {
       send_key(QEvent::KeyPress, Qt::Key_PageUp);
     } else if (options_.keys && requested_ == options_.keys->second) {
       send_key(QEvent::KeyRelease, Qt::Key_PageUp);
+    }
+    // The jog lever, without Ctrl (Ctrl+click turns an ImGui drag into a text field): pressed
+    // where the panel last drew it, then pushed right a few pixels each frame.
+    if (options_.jog) {
+      const auto [f0, f1] = *options_.jog;
+      const std::array<float, 4>& r = studio.first_jog_rect;
+      if (requested_ == f0) {
+        if (!(r[2] > r[0])) return fail("--jog: no controller's jog lever was drawn");
+        jog_start_ = QPointF(0.5 * (r[0] + r[2]), 0.5 * (r[1] + r[3]));
+        send_local(QEvent::MouseButtonPress, jog_start_, Qt::LeftButton, Qt::LeftButton,
+                   Qt::NoModifier);
+      } else if (requested_ > f0 && requested_ <= f1) {
+        const int pushed = std::min(requested_, f1 - 1) - f0;
+        const QPointF at = jog_start_ + QPointF(kJogPixels * pushed, 0);
+        if (requested_ < f1) {
+          send_local(QEvent::MouseMove, at, Qt::NoButton, Qt::LeftButton, Qt::NoModifier);
+        } else {
+          send_local(QEvent::MouseButtonRelease, at, Qt::LeftButton, Qt::NoButton, Qt::NoModifier);
+        }
+      }
     }
     window_.viewport()->repaint();
     studio.runner->post(pbm::StepFrame{});
@@ -240,6 +283,7 @@ class SmokeRun : public QObject {
   pbm::TradeoffSetting applied_;
   QTimer timer_;
   int requested_ = 0;
+  QPointF jog_start_;
   int waited_ = 0;  // ticks since the last step was posted
   int result_ = 1;
 };
@@ -289,13 +333,11 @@ int main(int argc, char** argv) {
       smoke->tradeoff_seconds = v ? v->toDouble(&ok) : 0;
       if (!ok || !(smoke->tradeoff_seconds > 0)) return usage("--tradeoff needs seconds > 0");
     } else if (a == "--keys" && smoke) {
-      auto v = value("keys");
-      const QStringList ends = v ? v->split(':') : QStringList();
-      bool ok0 = false, ok1 = false;
-      const int f0 = ends.size() == 2 ? ends[0].toInt(&ok0) : 0;
-      const int f1 = ends.size() == 2 ? ends[1].toInt(&ok1) : 0;
-      if (!ok0 || !ok1 || f0 < 0 || f1 <= f0) return usage("--keys needs frames F0:F1, F0 < F1");
-      smoke->keys = std::make_pair(f0, f1);
+      smoke->keys = frame_range(value("keys"), 1);
+      if (!smoke->keys) return usage("--keys needs frames F0:F1, F0 < F1");
+    } else if (a == "--jog" && smoke) {
+      smoke->jog = frame_range(value("jog"), 2);
+      if (!smoke->jog) return usage("--jog needs frames F0:F1, F0 + 1 < F1");
     } else if (a == "--overlays" && smoke) {
       smoke->overlays = true;
     } else if (a == "--screenshot" && smoke) {
