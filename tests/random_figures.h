@@ -38,8 +38,9 @@ inline SpatialInertia random_inertia(std::mt19937& rng) {
 }
 
 // A tree of n segments, each joint kind in turn (so every kind appears from n = 6), parents drawn
-// among the earlier segments.
-inline FigureModel random_tree(int n, std::mt19937& rng) {
+// among the earlier segments. coordinate_axes: every other segment's axis is +-e_k instead, the
+// axes along which the articulated-body method takes its shortcuts (figure_kinematics.h).
+inline FigureModel random_tree(int n, std::mt19937& rng, bool coordinate_axes = false) {
   static constexpr JointKind kKinds[] = {JointKind::revolute,  JointKind::spherical,
                                          JointKind::prismatic, JointKind::universal,
                                          JointKind::fixed,     JointKind::free};
@@ -53,6 +54,9 @@ inline FigureModel random_tree(int n, std::mt19937& rng) {
     s.joint.kind = kKinds[(i + (n > 1 ? 1 : 0)) % 6];
     if (i == 0 && n > 1) s.joint.kind = JointKind::free;
     s.joint.axis = random_unit(rng);
+    if (coordinate_axes && i % 2 == 1) {
+      s.joint.axis = Vec3::Unit(i / 2 % 3) * (i % 4 == 1 ? 1 : -1);
+    }
     s.joint.axis2 = s.joint.axis.unitOrthogonal();
     s.X_tree = SpatialTransform{random_rotation(rng), Vec3(offset(rng), offset(rng), offset(rng))};
     s.inertia = random_inertia(rng);

@@ -76,6 +76,43 @@ TEST(ArticulatedBody, AgreesWithMassMatrixAndNewtonEulerOnRandomTrees) {
   EXPECT_LT(worst_inverse, 1e-10);
 }
 
+// Armature a (the step's implicit joint damping, RBDA sec. 7.3): ABA with D = S^T I^A S + a
+// gives (H + diag(a))^-1 (tau - C), on random trees and on trees whose joints turn about
+// coordinate axes, where ABA takes a shortcut for a revolute joint about e_k (row and column k of
+// I^a vanish, but only without armature: with it I^a s = U a / D). This test found the shortcut
+// taken with armature: a 7-link chain's accelerations 3% off at a = 1e-3 kg m^2.
+TEST(ArticulatedBody, WithArmatureAgreesWithTheMassMatrixPlusItsDiagonal) {
+  std::mt19937 rng(11);
+  Real worst = 0;
+  for (const bool coordinate_axes : {false, true}) {
+    for (int n : {1, 2, 3, 6, 7, 12, 20}) {
+      for (int trial = 0; trial < 3; ++trial) {
+        const FigureModel figure = random_tree(n, rng, coordinate_axes);
+        FigureWorkspace ws;
+        size_figure_workspace(figure, ws);
+        const VecX q = random_q(figure, rng);
+        const VecX v = random_vector(figure.n_v, rng, 2.0);
+        const VecX tau = random_vector(figure.n_v, rng, 5.0);
+        MatX H;
+        joint_space_inertia(figure, q.data(), ws, H);
+        VecX C(figure.n_v), zero = VecX::Zero(figure.n_v);
+        inverse_dynamics(figure, q.data(), v.data(), zero.data(), {}, kGravity, ws, C.data());
+        for (const Real scale : {1e-3, 0.1, 10.0}) {
+          const VecX armature = scale * (random_vector(figure.n_v, rng, 1.0).array() + 1.5);
+          VecX qdd(figure.n_v);
+          forward_dynamics(figure, q.data(), v.data(), tau.data(), {}, kGravity, ws, qdd.data(),
+                           armature.data());
+          MatX H_a = H;
+          H_a.diagonal() += armature;
+          worst = std::max(worst, relative_error(qdd, H_a.llt().solve(tau - C)));
+        }
+      }
+    }
+  }
+  std::printf("worst relative error with armature: ABA vs (H + diag a)^-1 (tau - C) %.2e\n", worst);
+  EXPECT_LT(worst, 1e-10);
+}
+
 // 1/2 v^T H v equals the sum of the segments' 1/2 v_i^T I_i v_i.
 TEST(ArticulatedBody, MassMatrixGivesTheSegmentsKineticEnergy) {
   std::mt19937 rng(11);

@@ -59,9 +59,10 @@ void forward_dynamics_after_kinematics(const FigureModel& figure, const Real* ta
       const Vec6 UD = D_inv * U;
       Ia.noalias() -= UD * U.transpose();
       pa += u * UD;
-      if (k >= 0 && k < 3) {
-        // I^a s = U - U D^-1 D = 0 in exact arithmetic: row and column k vanish, and the
-        // transform to the parent skips them (add_inertia_to_parent's zero_row).
+      if (k >= 0 && k < 3 && (!armature || armature[segment.v_offset] == 0)) {
+        // I^a s = U - U D^-1 s^T U = 0 in exact arithmetic: row and column k vanish, and the
+        // transform to the parent skips them (add_inertia_to_parent's zero_row). Not with an
+        // armature a: D = s^T U + a and I^a s = U a / D.
         Ia.row(k).setZero();
         Ia.col(k).setZero();
         zero_row = k;
