@@ -44,6 +44,9 @@ struct ControllerDef {
   Real settling_time = 0.3;
   Real alpha = 10;
   Real beta = 2;
+  // MRAC beyond the book: an adaptive bias torque (control/mrac.h), so a DOF is held where
+  // gravity pulls it without a steady error; off, the book's law.
+  bool adaptive_bias = false;
   // PD and stable PD gains [N m/rad, N m s/rad or N/m, N s/m].
   Real kp = 0;
   Real kd = 0;

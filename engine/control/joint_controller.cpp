@@ -17,6 +17,7 @@ MracState unpack(const Real* s) {
   m.x_m = Vec2(s[0], s[1]);
   m.K_integral = Vec2(s[2], s[3]);
   m.Kr_integral = s[4];
+  m.bias_integral = s[5];
   return m;
 }
 
@@ -26,6 +27,7 @@ void pack(const MracState& m, Real* s) {
   s[2] = m.K_integral[0];
   s[3] = m.K_integral[1];
   s[4] = m.Kr_integral;
+  s[5] = m.bias_integral;
 }
 
 }  // namespace

@@ -13,8 +13,9 @@
 namespace pbm {
 
 // Entries of a controller's state in the figure's controller slice of State::q (its integrals,
-// sec. 15.4.2): MRAC keeps (q_m, q_m-dot, K_1, K_2, K_r); PD and stable PD keep none.
-inline constexpr int kMracStateSize = 5;
+// sec. 15.4.2): MRAC keeps (q_m, q_m-dot, K_1, K_2, K_r, u_b) (u_b: its adaptive bias, beyond
+// the book); PD and stable PD keep none.
+inline constexpr int kMracStateSize = 6;
 
 struct JointController {
   ControllerDef def;

@@ -30,13 +30,15 @@ MracOutput mrac_control(const MracSettings& settings, const MracState& state, Re
   // (15.16), (15.17): gains = integral part + proportional part; (15.13): u = K x + K_r r.
   const Vec2 K = state.K_integral + settings.beta * y * x;
   const Real Kr = state.Kr_integral + settings.beta * y * out.r;
-  const Real u = K.dot(x) + Kr * out.r;
+  const Real bias = settings.adaptive_bias ? state.bias_integral + settings.beta * y : 0;
+  const Real u = K.dot(x) + Kr * out.r + bias;
   out.saturated = std::abs(u) > settings.max_output;
   out.u = std::clamp(u, -settings.max_output, settings.max_output);
   // The model runs beside the plant (15.11); the integrals stop while the output is cut.
   rate.x_m = Vec2(state.x_m[1], -m.a1 * state.x_m[0] - m.a2 * state.x_m[1] + m.b * out.r);
   rate.K_integral = out.saturated ? Vec2::Zero() : Vec2(settings.alpha * y * x);
   rate.Kr_integral = out.saturated ? 0 : settings.alpha * y * out.r;
+  rate.bias_integral = out.saturated || !settings.adaptive_bias ? 0 : settings.alpha * y;
   return out;
 }
 

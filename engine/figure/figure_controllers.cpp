@@ -90,6 +90,7 @@ std::vector<JointController> compile_figure_controllers(const FigureDef& def,
       c.mrac.settling_time = d.settling_time;
       c.mrac.alpha = d.alpha;
       c.mrac.beta = d.beta;
+      c.mrac.adaptive_bias = d.adaptive_bias;
       if (d.max_output) c.mrac.max_output = *d.max_output;
       c.state_offset = state;
       state += kMracStateSize;

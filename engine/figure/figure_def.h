@@ -148,6 +148,7 @@ struct MocapDef {
   ControllerKind controller = ControllerKind::stable_pd;
   Real kp = 200, kd = 20;
   Real settling_time = 0.3, alpha = 10, beta = 2;
+  bool adaptive_bias = false;  // mrac: ControllerDef::adaptive_bias
   std::optional<Real> max_output;
   Real stiffness = 1000, damping = 50;
   std::optional<Real> max_force;

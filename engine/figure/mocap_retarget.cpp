@@ -127,6 +127,7 @@ MocapTracks retarget_mocap(const FigureDef& def, const FigureModel& figure, cons
       c.settling_time = mocap.settling_time;
       c.alpha = mocap.alpha;
       c.beta = mocap.beta;
+      c.adaptive_bias = mocap.adaptive_bias;
       c.kp = mocap.kp;
       c.kd = mocap.kd;
       c.max_output = mocap.max_output;

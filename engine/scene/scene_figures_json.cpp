@@ -251,6 +251,11 @@ constexpr auto kControllerFields = std::to_array<Field<ControllerDef>>({
                                  .range = kNonNegative,
                                  .kinds = kMrac,
                                  .description = "Proportional adaptation gain (15.16), (15.17)."}),
+    value<&ControllerDef::adaptive_bias>(
+        {.key = "adaptive_bias",
+         .kinds = kMrac,
+         .description = "Beyond the book: a bias torque adapted with the gains, so the DOF holds "
+                        "where gravity pulls it without a steady error."}),
     value<&ControllerDef::kp>({.key = "kp",
                                .unit = "N m/rad or N/m",
                                .range = kNonNegative,
@@ -440,6 +445,9 @@ constexpr auto kMocapFields = std::to_array<Field<MocapDef>>({
     value<&MocapDef::beta>({.key = "beta",
                             .range = kNonNegative,
                             .description = "mrac: proportional adaptation gain."}),
+    value<&MocapDef::adaptive_bias>(
+        {.key = "adaptive_bias",
+         .description = "mrac: an adaptive bias torque (beyond the book)."}),
     value<&MocapDef::max_output>({.key = "max_output",
                                   .unit = "N m",
                                   .range = kPositive,
