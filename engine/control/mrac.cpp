@@ -27,7 +27,8 @@ MracOutput mrac_control(const MracSettings& settings, const MracState& state, Re
   // (15.12), (15.15): the model-following error, weighted as the model's own dynamics.
   const Vec2 x_e = state.x_m - x;
   const Real y = 16 / (t_s * t_s) * x_e[0] + 4 / t_s * x_e[1];
-  // (15.16), (15.17): gains = integral part + proportional part; (15.13): u = K x + K_r r.
+  // (15.16), (15.17): gains = integral part + proportional part; (15.13): u = K x + K_r r, plus
+  // the adaptive bias when asked (beyond the book, MracSettings).
   const Vec2 K = state.K_integral + settings.beta * y * x;
   const Real Kr = state.Kr_integral + settings.beta * y * out.r;
   const Real bias = settings.adaptive_bias ? state.bias_integral + settings.beta * y : 0;
