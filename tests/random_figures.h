@@ -55,7 +55,7 @@ inline FigureModel random_tree(int n, std::mt19937& rng, bool coordinate_axes = 
     if (i == 0 && n > 1) s.joint.kind = JointKind::free;
     s.joint.axis = random_unit(rng);
     if (coordinate_axes && i % 2 == 1) {
-      s.joint.axis = Vec3::Unit(i / 2 % 3) * (i % 4 == 1 ? 1 : -1);
+      s.joint.axis = Vec3::Unit((i / 2 + i / 6) % 3) * (i % 4 == 1 ? 1 : -1);
     }
     s.joint.axis2 = s.joint.axis.unitOrthogonal();
     s.X_tree = SpatialTransform{random_rotation(rng), Vec3(offset(rng), offset(rng), offset(rng))};
