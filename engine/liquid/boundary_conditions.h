@@ -1,0 +1,42 @@
+// The boundary conditions of 16.2.2, set once per pass over the grid so that the updates of
+// (16.2) and (16.5)-(16.9) apply "blindly" (homogeneous boundaries): obstacles' and walls'
+// velocities, inflows', the free surface's (16.10), and the velocities just outside the liquid
+// that advection and the markers read.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "liquid/liquid_model.h"
+
+namespace pbm {
+
+// Faces of Solid cells carry no flow across; faces of Inflow cells their inflow's velocity; the
+// tangential velocity inside a wall mirrors the liquid's beside it: w0 = -w1 no-slip, w0 = w1
+// free-slip.
+void set_wall_velocities(const LiquidModel& model, const std::vector<CellFlag>& flags,
+                         MacField& field);
+
+// The faces of Surface cells open to Empty cells (16.10 and the text after it): an open face
+// whose opposite face is closed takes the opposite's velocity (each dx/dx vanishes), and what
+// divergence the cell's other axes still have is shared among those faces, so every Surface
+// cell's D of (16.5) is zero: one open face is (16.10) itself. An axis open on both sides keeps
+// the velocities the body force gave it.
+void set_surface_velocities(const LiquidModel& model, const std::vector<CellFlag>& flags,
+                            MacField& field);
+
+// Velocities of faces with no liquid on either side, from their neighbours', `layers` deep: what
+// a marker just outside the liquid and a backtrace that leaves it read.
+void extrapolate_velocities(const LiquidModel& model, const std::vector<CellFlag>& flags,
+                            int layers, std::vector<std::uint8_t>& known,
+                            std::vector<std::uint8_t>& next_known, MacField& field);
+
+// The divergence of (16.4) in cell c, sum_a (u_a+ - u_a-) / h_a [1/s] (minus D of (16.5)).
+inline Real cell_divergence(const MacGrid& g, const MacField& f, int c) {
+  const auto s = static_cast<std::size_t>(c);
+  return (f.u[0][s] - f.u[0][s - static_cast<std::size_t>(g.sx)]) / g.h.x() +
+         (f.u[1][s] - f.u[1][s - static_cast<std::size_t>(g.sy)]) / g.h.y() +
+         (f.u[2][s] - f.u[2][s - static_cast<std::size_t>(g.sz)]) / g.h.z();
+}
+
+}  // namespace pbm

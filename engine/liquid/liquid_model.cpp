@@ -1,0 +1,146 @@
+#include "liquid/liquid_model.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace pbm {
+
+namespace {
+
+bool inside(const LiquidBoxDef& box, const Vec3& x) {
+  return (x.array() >= box.min.array()).all() && (x.array() <= box.max.array()).all();
+}
+
+// Labels the interior cells whose centre lies in `box`; returns how many.
+int mark_cells(const MacGrid& grid, const LiquidBoxDef& box, CellFlag flag,
+               std::vector<CellFlag>& fixed, std::vector<int>* cells) {
+  int marked = 0;
+  for (int k = 1; k <= grid.n.z(); ++k) {
+    for (int j = 1; j <= grid.n.y(); ++j) {
+      for (int i = 1; i <= grid.n.x(); ++i) {
+        if (!inside(box, grid.centre(i, j, k))) continue;
+        const int c = grid.index(i, j, k);
+        fixed[static_cast<std::size_t>(c)] = flag;
+        if (cells) cells->push_back(c);
+        ++marked;
+      }
+    }
+  }
+  return marked;
+}
+
+// The solid-solid faces a liquid face's stencil reads across a wall (16.2.2).
+void find_mirror_faces(LiquidModel& m) {
+  const MacGrid& g = m.grid;
+  auto solid = [&](int c) { return m.fixed[static_cast<std::size_t>(c)] == CellFlag::solid; };
+  for (int a = 0; a < 3; ++a) {
+    const int ea = g.stride(a);
+    Eigen::Vector3i last = g.n + Eigen::Vector3i::Ones();
+    last[a] = g.n[a];  // faces 0..n along a
+    for (int k = 0; k <= last.z(); ++k) {
+      for (int j = 0; j <= last.y(); ++j) {
+        for (int i = 0; i <= last.x(); ++i) {
+          const int f = g.index(i, j, k);
+          if (!solid(f) || !solid(f + ea)) continue;
+          LiquidModel::MirrorFace mirror{.face = f};
+          int found = 0;
+          const int ijk[3] = {i, j, k};
+          for (int b = 0; b < 3; ++b) {
+            if (b == a) continue;
+            for (int side = -1; side <= 1; side += 2) {
+              const int at = ijk[b] + side;
+              if (at < 0 || at > g.n[b] + 1) continue;
+              const int nb = f + side * g.stride(b);
+              if (!solid(nb) || !solid(nb + ea)) mirror.neighbours[found++] = nb;
+            }
+          }
+          if (found > 0) m.mirror_faces[a].push_back(mirror);
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+
+LiquidModel build_liquid_model(const LiquidDef& def, const Vec3& gravity, const std::string& file,
+                               int index) {
+  const std::string path = "liquids[" + std::to_string(index) + "]";
+  const long cells =
+      static_cast<long>(def.resolution.x()) * def.resolution.y() * def.resolution.z();
+  if ((def.resolution.array() < 1).any() || cells > kMaxLiquidCells) {
+    throw Error(file, path + ".resolution",
+                "a grid of " + std::to_string(cells) + " cells: must have 1 to " +
+                    std::to_string(kMaxLiquidCells) + " cells, at least 1 per axis");
+  }
+  LiquidModel m;
+  m.def = def;
+  const Vec3 extent = def.domain.max - def.domain.min;
+  m.grid.resize(def.resolution, extent.cwiseQuotient(def.resolution.cast<Real>()), def.domain.min);
+  m.fixed.assign(static_cast<std::size_t>(m.grid.size), CellFlag::solid);
+  for (int k = 1; k <= m.grid.n.z(); ++k) {
+    for (int j = 1; j <= m.grid.n.y(); ++j) {
+      for (int i = 1; i <= m.grid.n.x(); ++i) {
+        m.fixed[static_cast<std::size_t>(m.grid.index(i, j, k))] = CellFlag::empty;
+      }
+    }
+  }
+  for (std::size_t s = 0; s < def.solids.size(); ++s) {
+    mark_cells(m.grid, def.solids[s], CellFlag::solid, m.fixed, nullptr);
+  }
+  m.inflow_of.assign(static_cast<std::size_t>(m.grid.size), -1);
+  for (std::size_t s = 0; s < def.inflows.size(); ++s) {
+    InflowModel inflow{.cells = {},
+                       .velocity = def.inflows[s].velocity,
+                       .markers_per_second = def.inflows[s].markers_per_second,
+                       .box = def.inflows[s].box};
+    if (mark_cells(m.grid, inflow.box, CellFlag::inflow, m.fixed, &inflow.cells) == 0) {
+      throw Error(file, path + ".inflows[" + std::to_string(s) + "]",
+                  "covers no cell's centre of the grid");
+    }
+    m.inflows.push_back(std::move(inflow));
+  }
+  for (std::size_t s = 0; s < def.outflows.size(); ++s) {
+    if (mark_cells(m.grid, def.outflows[s], CellFlag::outflow, m.fixed, nullptr) == 0) {
+      throw Error(file, path + ".outflows[" + std::to_string(s) + "]",
+                  "covers no cell's centre of the grid");
+    }
+  }
+  // A later box wins a cell; the inflows' lists keep only the cells still theirs.
+  for (std::size_t s = 0; s < m.inflows.size(); ++s) {
+    auto& list = m.inflows[s].cells;
+    std::erase_if(list, [&](int c) {
+      return m.fixed[static_cast<std::size_t>(c)] != CellFlag::inflow ||
+             m.inflow_of[static_cast<std::size_t>(c)] >= 0;
+    });
+    for (int c : list) m.inflow_of[static_cast<std::size_t>(c)] = static_cast<int>(s);
+    if (list.empty()) {
+      throw Error(file, path + ".inflows[" + std::to_string(s) + "]",
+                  "every cell of it is another inflow's or an outflow's");
+    }
+    // Markers are released over the cells it holds.
+    LiquidBoxDef bounds{Vec3::Constant(1e300), Vec3::Constant(-1e300)};
+    for (int c : list) {
+      const int i = c % m.grid.sy, j = (c / m.grid.sy) % (m.grid.n.y() + 2), k = c / m.grid.sz;
+      const Vec3 lo = m.grid.centre(i, j, k) - 0.5 * m.grid.h;
+      bounds.min = bounds.min.cwiseMin(lo);
+      bounds.max = bounds.max.cwiseMax(lo + m.grid.h);
+    }
+    m.inflows[s].box = bounds;
+  }
+  // Inflow boxes released into the domain only; the thin axis's markers at its middle.
+  m.thin_axis = -1;
+  for (int a = 0; a < 3; ++a) {
+    if (m.grid.n[a] == 1 && m.thin_axis < 0) m.thin_axis = a;
+  }
+  m.markers_per_cell = 1;
+  for (int a = 0; a < 3; ++a) m.markers_per_cell *= a == m.thin_axis ? 1 : def.markers_per_axis;
+  m.vertical_axis = 2;
+  if (gravity.squaredNorm() > 0) gravity.cwiseAbs().maxCoeff(&m.vertical_axis);
+  find_mirror_faces(m);
+  return m;
+}
+
+}  // namespace pbm

@@ -1,0 +1,51 @@
+// A liquid compiled for the step (docs/architecture.md, "Model"): its grid, the cells the scene
+// fixes (walls and solid boxes, inflows, outflows) and its knobs. Constant while time runs.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "liquid/liquid_def.h"
+#include "liquid/mac_grid.h"
+
+namespace pbm {
+
+struct InflowModel {
+  std::vector<int> cells;  // grid indices of its Inflow cells
+  Vec3 velocity = Vec3::Zero();
+  Real markers_per_second = 0;  // markers released, spread over its cells
+  LiquidBoxDef box;             // where they are released (clipped to the domain)
+};
+
+struct LiquidModel {
+  LiquidDef def;
+  MacGrid grid;
+  // Solid, Inflow and Outflow where the scene puts them (the ghost layer is Solid); Empty
+  // elsewhere: the liquid's own cells are labelled every substep (16.3).
+  std::vector<CellFlag> fixed;
+  // The Inflow index of each Inflow cell (-1 elsewhere).
+  std::vector<int> inflow_of;
+  std::vector<InflowModel> inflows;
+  int thin_axis = -1;     // the axis of one cell in a 2D grid, -1 in 3D
+  int vertical_axis = 2;  // the axis most against gravity (the height field's columns)
+  int markers_per_cell = 8;
+  // Solid-solid faces next to the liquid's faces: their velocity is the mirror of their
+  // neighbours' (16.2.2: w0 = -w1 no-slip, w0 = w1 free-slip). Per axis: the face and up to four
+  // neighbours across the other axes (-1: none).
+  struct MirrorFace {
+    int face = 0;
+    int neighbours[4] = {-1, -1, -1, -1};
+  };
+  std::vector<MirrorFace> mirror_faces[3];
+};
+
+// Throws pbm::Error(file, "liquids[index]...") when the liquid cannot be compiled (a grid over
+// the cell limit).
+LiquidModel build_liquid_model(const LiquidDef& def, const Vec3& gravity, const std::string& file,
+                               int index);
+
+// The most cells a grid may have: a 256^3 grid's arrays are about 1 GB (scenes/README.md,
+// "Limits").
+inline constexpr long kMaxLiquidCells = 256L * 256L * 256L;
+
+}  // namespace pbm

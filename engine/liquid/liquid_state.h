@@ -1,0 +1,31 @@
+// What of a liquid changes a later frame (docs/architecture.md, "Determinism"): its velocities
+// and pressure (the pressure warm-starts the next solve and enters the next momentum update,
+// (16.2)), its markers or height field, and what its inflows have released.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "liquid/liquid_model.h"
+
+namespace pbm {
+
+struct LiquidState {
+  Real time = 0;      // how far the liquid has advanced [s] (it steps on its own CFL clock)
+  MacField velocity;  // u, v, w on the faces [m/s]
+  std::vector<Real> pressure;        // kinematic pressure p / rho at the centres [m^2/s^2] (16.1)
+  std::vector<Vec3> markers;         // marker particles (16.3.1) [m]
+  std::vector<Real> height;          // surface height per column (16.3.3) [m], height field only
+  std::vector<Real> released;        // per inflow: markers owed but not yet released (a fraction)
+  std::uint64_t released_total = 0;  // markers ever released: seeds where the next one goes
+};
+
+LiquidState initial_liquid_state(const LiquidModel& model, const Vec3& gravity);
+
+// Adds the bytes of every field to an FNV-1a hash.
+void hash_liquid_state(const LiquidState& state, std::uint64_t& h);
+
+// Bytes the state holds (the timeline's memory budget).
+std::size_t liquid_state_bytes(const LiquidState& state);
+
+}  // namespace pbm

@@ -1,0 +1,150 @@
+#include "liquid/liquid_step.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "liquid/boundary_conditions.h"
+#include "liquid/cell_labels.h"
+#include "liquid/momentum.h"
+#include "liquid/surface_tracking.h"
+
+namespace pbm {
+
+namespace {
+
+// How far outside the liquid the velocities are continued: a marker or a backtrace moves less
+// than a cell in a substep (16.3), so two layers hold everything either reads.
+constexpr int kExtrapolationLayers = 2;
+
+// The largest |u_a| / h_a over faces with liquid on a side [1/s].
+Real fastest_rate(const LiquidModel& model, const std::vector<CellFlag>* flags,
+                  const MacField& field) {
+  const MacGrid& g = model.grid;
+  Real rate = 0;
+  for (int a = 0; a < 3; ++a) {
+    const int e = g.stride(a);
+    const std::vector<Real>& u = field.u[a];
+    for (int c = e; c + e < g.size; ++c) {
+      if (flags && !is_liquid((*flags)[static_cast<std::size_t>(c)]) &&
+          !is_liquid((*flags)[static_cast<std::size_t>(c + e)])) {
+        continue;
+      }
+      rate = std::max(rate, std::abs(u[static_cast<std::size_t>(c)]) / g.h[a]);
+    }
+  }
+  return rate;
+}
+
+// Pressure where no solve sets it: the applied one in Surface and Empty cells (16.2.2); an
+// Outflow cell's follows the liquid beside it (the last substep's), so the liquid leaves at the
+// rate its own pressure drives.
+void set_boundary_pressure(const LiquidModel& model, const std::vector<CellFlag>& flags,
+                           Real applied, std::vector<Real>& p) {
+  const MacGrid& g = model.grid;
+  for (int c = 0; c < g.size; ++c) {
+    const CellFlag f = flags[static_cast<std::size_t>(c)];
+    if (f == CellFlag::surface || f == CellFlag::empty) {
+      p[static_cast<std::size_t>(c)] = applied;
+    } else if (f == CellFlag::outflow) {
+      Real sum = 0;
+      int n = 0;
+      for (int a = 0; a < 3; ++a) {
+        for (int side = -1; side <= 1; side += 2) {
+          const int nb = c + side * g.stride(a);
+          if (nb < 0 || nb >= g.size || !is_liquid(flags[static_cast<std::size_t>(nb)])) continue;
+          sum += p[static_cast<std::size_t>(nb)];
+          ++n;
+        }
+      }
+      p[static_cast<std::size_t>(c)] = n > 0 ? sum / n : applied;
+    }
+  }
+}
+
+}  // namespace
+
+Real liquid_substep_limit(const LiquidModel& model, const LiquidInputs& inputs,
+                          const LiquidState& state) {
+  const MacGrid& g = model.grid;
+  Real h_min = 1e300, inv_h2 = 0;
+  for (int a = 0; a < 3; ++a) {
+    if (a == model.thin_axis) continue;
+    h_min = std::min(h_min, g.h[a]);
+    inv_h2 += 1 / (g.h[a] * g.h[a]);
+  }
+  // The whole field, liquid or not: its labels are the next substep's to make.
+  const Real rate =
+      fastest_rate(model, nullptr, state.velocity) + std::sqrt(inputs.gravity.norm() / h_min);
+  Real dt = model.def.cfl / std::max(rate, 1e-12);
+  // Explicit diffusion is stable for nu dt sum_a 2 / h_a^2 <= 1.
+  if (model.def.viscosity > 0) dt = std::min(dt, 1 / (2 * model.def.viscosity * inv_h2));
+  return dt;
+}
+
+void liquid_substep(const LiquidModel& model, const LiquidInputs& inputs, Real dt,
+                    LiquidState& state, LiquidWorkspace& ws, LiquidStepStats& stats) {
+  const Real applied =
+      inputs.surface_pressure / model.def.density + model.def.surface_pressure / model.def.density;
+  // 3-4: labels, boundary pressures and velocities.
+  label_cells(model, state, ws.flags, ws.fill, ws.count);
+  set_boundary_pressure(model, ws.flags, applied, state.pressure);
+  MacField& field = state.velocity;
+  set_wall_velocities(model, ws.flags, field);
+  set_surface_velocities(model, ws.flags, field);
+  extrapolate_velocities(model, ws.flags, kExtrapolationLayers, ws.known, ws.next_known, field);
+  for (int a = 0; a < 3; ++a) ws.previous.u[a] = field.u[a];
+  // The system of this substep's labels; its ghost-fluid scales also enter the momentum's
+  // pressure gradient.
+  const bool dirichlet = build_pressure_system(model, dt, ws);
+  // 5: the tentative velocities.
+  update_momentum(model,
+                  MomentumInput{.flags = ws.flags,
+                                .face_scale = ws.face_scale,
+                                .previous = ws.previous,
+                                .pressure = state.pressure,
+                                .gravity = inputs.gravity,
+                                .dt = dt},
+                  field);
+  set_wall_velocities(model, ws.flags, field);
+  // 6: the pressure iteration.
+  const PressureSolveOptions options{
+      .tolerance = model.def.tolerance, .relative = 0, .max_iterations = model.def.max_iterations};
+  const PressureSolveStats solve =
+      solve_pressure(model, model.def.solver, dt, dirichlet, options, ws, field, state.pressure);
+  // 7: the Surface cells' velocities again, and what lies beyond them.
+  set_surface_velocities(model, ws.flags, field);
+  set_wall_velocities(model, ws.flags, field);
+  extrapolate_velocities(model, ws.flags, kExtrapolationLayers, ws.known, ws.next_known, field);
+  // 8: the surface.
+  if (model.def.surface == SurfaceMethod::height_field) {
+    advance_height_field(model, field, dt, state, ws);
+  } else {
+    stats.removed += advect_markers(model, field, dt, state.markers);
+    stats.dropped += release_markers(model, dt, state);
+  }
+  state.time += dt;
+  stats.substeps += 1;
+  stats.iterations += solve.iterations;
+  stats.max_iterations = std::max(stats.max_iterations, solve.iterations);
+  stats.unconverged += solve.converged ? 0 : 1;
+  stats.divergence = std::max(stats.divergence, solve.divergence);
+  stats.cfl = std::max(stats.cfl, dt * fastest_rate(model, &ws.flags, field));
+  stats.dt_min = stats.substeps == 1 ? dt : std::min(stats.dt_min, dt);
+  stats.dt_max = std::max(stats.dt_max, dt);
+}
+
+void advance_liquid(const LiquidModel& model, const LiquidInputs& inputs, Real t_end,
+                    LiquidState& state, LiquidWorkspace& ws, LiquidStepStats& stats) {
+  // A remainder below this fraction of a substep is left to the next call.
+  constexpr Real kNegligible = 1e-9;
+  while (t_end - state.time > kNegligible * (1 + std::abs(t_end))) {
+    const Real limit = liquid_substep_limit(model, inputs, state);
+    const Real remaining = t_end - state.time;
+    const Real n = std::ceil(remaining / limit - 1e-9);
+    const Real dt = n <= 1 ? remaining : remaining / n;
+    liquid_substep(model, inputs, dt, state, ws, stats);
+    if (n <= 1) state.time = t_end;  // exactly, whatever the rounding of the sum
+  }
+}
+
+}  // namespace pbm

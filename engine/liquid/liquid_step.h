@@ -1,0 +1,43 @@
+// The algorithm of 16.5 over one liquid: substeps of its own length, each the CFL condition
+// (16.3) at the chosen fraction, until the liquid reaches a time.
+#pragma once
+
+#include "liquid/liquid_state.h"
+#include "liquid/liquid_workspace.h"
+#include "liquid/pressure_system.h"
+
+namespace pbm {
+
+// What the liquid's substeps cost and measured since the stats were last reset.
+struct LiquidStepStats {
+  int substeps = 0;
+  int iterations = 0;           // of every pressure solve
+  int max_iterations = 0;       // of the worst one
+  int unconverged = 0;          // solves that stopped at max_iterations
+  Real divergence = 0;          // the largest |div u| of a Full cell after a solve [1/s]
+  Real cfl = 0;                 // the largest max_a |u_a| dt / h_a taken (16.3)
+  Real dt_min = 0, dt_max = 0;  // the substeps' lengths [s]
+  int removed = 0;              // markers that left by an outflow
+  int dropped = 0;              // markers an inflow could not release (the capacity)
+};
+
+struct LiquidInputs {
+  Vec3 gravity{0, 0, -9.81};
+  // Applied on the Surface cells beyond the liquid's own surface_pressure [Pa] (16.6.2).
+  Real surface_pressure = 0;
+};
+
+// The length of the next substep: the CFL fraction of the time to cross a cell at the fastest
+// face's speed plus the speed gravity gives in that time, and the explicit viscous limit.
+Real liquid_substep_limit(const LiquidModel& model, const LiquidInputs& inputs,
+                          const LiquidState& state);
+
+// One substep of 16.5 (steps 3-8) of length dt.
+void liquid_substep(const LiquidModel& model, const LiquidInputs& inputs, Real dt,
+                    LiquidState& state, LiquidWorkspace& ws, LiquidStepStats& stats);
+
+// Substeps until state.time reaches t_end (equal lengths within the limit).
+void advance_liquid(const LiquidModel& model, const LiquidInputs& inputs, Real t_end,
+                    LiquidState& state, LiquidWorkspace& ws, LiquidStepStats& stats);
+
+}  // namespace pbm

@@ -1,0 +1,32 @@
+// A liquid's scratch (docs/architecture.md, "Workspace"): the cell labels of the substep, the
+// tentative velocities, the pressure system and its solvers' vectors. Nothing here changes a
+// later frame: every array is rebuilt from the state in each substep.
+#pragma once
+
+#include <vector>
+
+#include "liquid/liquid_model.h"
+#include "liquid/pressure_multigrid.h"
+
+namespace pbm {
+
+struct LiquidWorkspace {
+  std::vector<CellFlag> flags;      // this substep's labels (16.3)
+  std::vector<Real> fill;           // fraction of a Surface cell the liquid fills, 1 in Full cells
+  std::vector<int> count;           // markers per cell
+  MacField previous;                // the velocities at the substep's start (advection reads them)
+  std::vector<std::uint8_t> known;  // faces whose velocity the extrapolation may read
+  std::vector<std::uint8_t> next_known;
+  // The pressure system A dp = D on the Full cells (liquid/pressure_system.h), per cell.
+  std::vector<int> cell_of_row;              // the Full cells, in index order
+  std::vector<Real> diag;                    // A's diagonal
+  std::vector<Real> target;                  // the divergence each Full cell is solved to [1/s]
+  std::vector<Real> face_scale[3];           // s_f of each cell's + face along each axis
+  std::vector<Real> dp, r, z, s, q, precon;  // conjugate gradients' vectors, MIC(0)'s factor
+  std::vector<Real> height_next;             // the height field's update (16.12)
+  MultigridHierarchy multigrid;
+};
+
+void size_liquid_workspace(const LiquidModel& model, LiquidWorkspace& ws);
+
+}  // namespace pbm

@@ -1,0 +1,78 @@
+// The staggered grid of fig. 16.1: pressure at the cells' centres, u, v, w at the centres of
+// their faces. Every array has one layer of ghost cells around the domain (the walls of 16.2.2,
+// whose velocities and pressures are set like any boundary cell's), so the update of (16.2) reads
+// its neighbours without a test. Index (i, j, k) in 0..n+1 per axis; the interior is 1..n.
+// u(i, j, k) is the face between cells i and i+1 along x (u_{i+1/2,j,k}), v and w likewise.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "core/types.h"
+
+namespace pbm {
+
+// What a cell holds (16.2.1); Inflow and Outflow are the boundary cells of 16.2.2.
+enum class CellFlag : std::uint8_t { solid, full, surface, empty, inflow, outflow };
+
+inline bool is_liquid(CellFlag f) {
+  return f == CellFlag::full || f == CellFlag::surface;
+}
+// A face whose velocity the walls or a source fix (no momentum update, no pressure correction).
+inline bool fixes_velocity(CellFlag f) {
+  return f == CellFlag::solid || f == CellFlag::inflow;
+}
+
+struct MacGrid {
+  Eigen::Vector3i n{1, 1, 1};  // interior cells per axis
+  Vec3 h{1, 1, 1};             // cell sizes delta x, y, z [m]
+  Vec3 origin = Vec3::Zero();  // the domain's min corner (the interior's first cell) [m]
+  int sx = 1, sy = 1, sz = 1;  // strides of the arrays (with the ghost layer)
+  int size = 0;                // cells with the ghost layer
+
+  void resize(const Eigen::Vector3i& cells, const Vec3& cell_size, const Vec3& min_corner) {
+    n = cells;
+    h = cell_size;
+    origin = min_corner;
+    sx = 1;
+    sy = n.x() + 2;
+    sz = (n.x() + 2) * (n.y() + 2);
+    size = sz * (n.z() + 2);
+  }
+  int index(int i, int j, int k) const { return i * sx + j * sy + k * sz; }
+  int stride(int axis) const { return axis == 0 ? sx : axis == 1 ? sy : sz; }
+  bool interior(int i, int j, int k) const {
+    return i >= 1 && j >= 1 && k >= 1 && i <= n.x() && j <= n.y() && k <= n.z();
+  }
+  Real cell_volume() const { return h.x() * h.y() * h.z(); }
+  int interior_cells() const { return n.x() * n.y() * n.z(); }
+  // The cell containing a world point (possibly a ghost or outside: clamp before indexing).
+  Eigen::Vector3i cell_of(const Vec3& x) const {
+    const Vec3 c = (x - origin).cwiseQuotient(h);
+    return {static_cast<int>(std::floor(c.x())) + 1, static_cast<int>(std::floor(c.y())) + 1,
+            static_cast<int>(std::floor(c.z())) + 1};
+  }
+  // The centre of cell (i, j, k) [m].
+  Vec3 centre(int i, int j, int k) const {
+    return origin + Vec3((i - 0.5) * h.x(), (j - 0.5) * h.y(), (k - 0.5) * h.z());
+  }
+};
+
+// Velocity components on the faces and pressure at the centres, each grid.size long.
+struct MacField {
+  std::vector<Real> u[3];
+  void resize(int size) {
+    for (auto& c : u) c.assign(static_cast<std::size_t>(size), 0.0);
+  }
+};
+
+// The velocity at a world point: each component interpolated trilinearly from the faces that
+// carry it (the area weighting of fig. 16.3, volume weighting in 3D). Points outside the domain
+// are clamped to it.
+Vec3 interpolate_velocity(const MacGrid& grid, const std::vector<Real> (&u)[3], const Vec3& x);
+// One component (axis) at a world point.
+Real interpolate_component(const MacGrid& grid, const std::vector<Real>& u, int axis,
+                           const Vec3& x);
+
+}  // namespace pbm

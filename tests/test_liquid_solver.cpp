@@ -1,0 +1,297 @@
+// The liquid grid of ch. 16 on its own (engine/liquid/): still water, hydrostatic pressure, the
+// divergence after each solve, volume, the first sloshing mode against linear wave theory, the
+// three pressure solvers against each other, inflow volume and determinism.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "liquid/boundary_conditions.h"
+#include "liquid/cell_labels.h"
+#include "liquid/liquid_step.h"
+
+namespace pbm {
+namespace {
+
+constexpr Real kG = 9.81;
+
+struct Liquid {
+  LiquidModel model;
+  LiquidState state;
+  LiquidWorkspace ws;
+  LiquidInputs inputs;
+  explicit Liquid(const LiquidDef& def) {
+    inputs.gravity = Vec3(0, 0, -kG);
+    model = build_liquid_model(def, inputs.gravity, "test.json", 0);
+    state = initial_liquid_state(model, inputs.gravity);
+    size_liquid_workspace(model, ws);
+  }
+  LiquidStepStats run(Real seconds) {
+    LiquidStepStats stats;
+    advance_liquid(model, inputs, state.time + seconds, state, ws, stats);
+    return stats;
+  }
+  void label() { label_cells(model, state, ws.flags, ws.fill, ws.count); }
+  Real volume() {
+    label();
+    return liquid_volume(model, ws.flags, ws.fill);
+  }
+  // The largest speed on a face with liquid on a side [m/s].
+  Real max_liquid_speed() {
+    label();
+    const MacGrid& g = model.grid;
+    Real worst = 0;
+    for (int a = 0; a < 3; ++a) {
+      for (int c = g.stride(a); c + g.stride(a) < g.size; ++c) {
+        if (!is_liquid(ws.flags[c]) && !is_liquid(ws.flags[c + g.stride(a)])) continue;
+        worst = std::max(worst, std::abs(state.velocity.u[a][c]));
+      }
+    }
+    return worst;
+  }
+};
+
+// A tank of 1 m x 1 m (x, z), one cell thick in y (2D) or cubic (3D), water to `depth`.
+LiquidDef tank(int cells, Real depth, bool three_d) {
+  LiquidDef def;
+  def.domain = {Vec3(0, 0, 0), Vec3(1, three_d ? 1.0 : 1.0 / cells, 1)};
+  def.resolution = Eigen::Vector3i(cells, three_d ? cells : 1, cells);
+  def.fluid.push_back({{Vec3(0, 0, 0), Vec3(1, 1, depth)}, Vec3::Zero()});
+  return def;
+}
+
+LiquidDef dam_break(int cells) {
+  LiquidDef def = tank(cells, 0, false);
+  def.fluid = {{{Vec3(0, 0, 0), Vec3(0.25, 1, 0.5)}, Vec3::Zero()}};
+  return def;
+}
+
+TEST(LiquidSolver, StillWaterStaysStillUnderHydrostaticPressure) {
+  for (PressureSolver solver :
+       {PressureSolver::relaxation, PressureSolver::mic_pcg, PressureSolver::mgpcg}) {
+    for (bool three_d : {false, true}) {
+      LiquidDef def = tank(12, 0.5, three_d);
+      def.solver = solver;
+      def.advection = solver == PressureSolver::relaxation ? LiquidAdvection::book
+                                                           : LiquidAdvection::semi_lagrangian;
+      Liquid liquid(def);
+      LiquidStepStats stats;
+      for (int step = 0; step < 1000; ++step) {
+        liquid_substep(liquid.model, liquid.inputs, 0.01, liquid.state, liquid.ws, stats);
+      }
+      EXPECT_LT(liquid.max_liquid_speed(), 1e-6) << static_cast<int>(solver) << three_d;
+      // p = rho g depth at every Full cell's centre, within 1%.
+      const MacGrid& g = liquid.model.grid;
+      int checked = 0;
+      for (int c = 0; c < g.size; ++c) {
+        if (liquid.ws.flags[c] != CellFlag::full) continue;
+        const int k = c / g.sz;
+        const Real depth = 0.5 - (k - 0.5) * g.h.z();
+        const Real p = def.density * liquid.state.pressure[c];
+        EXPECT_NEAR(p, def.density * kG * depth, 0.01 * def.density * kG * depth);
+        ++checked;
+      }
+      EXPECT_GT(checked, 0);
+    }
+  }
+}
+
+TEST(LiquidSolver, HeightFieldSurfaceInsideACellKeepsHydrostaticPressure) {
+  LiquidDef def = tank(12, 0.45, false);  // the surface 0.4 of the way up its cell
+  def.surface = SurfaceMethod::height_field;
+  Liquid liquid(def);
+  liquid.run(5.0);
+  EXPECT_LT(liquid.max_liquid_speed(), 1e-6);
+  const MacGrid& g = liquid.model.grid;
+  for (int c = 0; c < g.size; ++c) {
+    if (liquid.ws.flags[c] != CellFlag::full) continue;
+    const Real depth = 0.45 - (c / g.sz - 0.5) * g.h.z();
+    EXPECT_NEAR(liquid.state.pressure[c], kG * depth, 0.01 * kG * depth);
+  }
+  for (Real h : liquid.state.height) EXPECT_NEAR(h, 0.45, 1e-9);
+}
+
+TEST(LiquidSolver, EverySolveLeavesFullCellsDivergenceFreeWithinCfl) {
+  for (PressureSolver solver :
+       {PressureSolver::relaxation, PressureSolver::mic_pcg, PressureSolver::mgpcg}) {
+    LiquidDef def = dam_break(32);
+    def.solver = solver;
+    Liquid liquid(def);
+    const LiquidStepStats stats = liquid.run(1.0);
+    std::printf(
+        "dam break 32, solver %d: %d substeps, %d iterations (max %d), max divergence "
+        "%.2e 1/s, max CFL %.3f\n",
+        static_cast<int>(solver), stats.substeps, stats.iterations, stats.max_iterations,
+        stats.divergence, stats.cfl);
+    EXPECT_EQ(stats.unconverged, 0);
+    EXPECT_LT(stats.divergence, def.tolerance);
+    EXPECT_LE(stats.cfl, 1.0);
+    EXPECT_GT(stats.substeps, 20);
+  }
+}
+
+TEST(LiquidSolver, VolumeInAClosedTankIsConserved) {
+  {
+    // Markers through a discrete field drift together (21% of the volume lost in 4 s at 2 x 2 a
+    // cell without it): the knob that pushes packed markers apart holds the volume.
+    LiquidDef def = dam_break(32);
+    def.volume_correction = 0.2;
+    Liquid liquid(def);
+    const Real v0 = liquid.volume();
+    LiquidStepStats stats;
+    for (int step = 0; step < 2000; ++step) {
+      liquid_substep(liquid.model, liquid.inputs, 0.002, liquid.state, liquid.ws, stats);
+    }
+    std::printf("dam break markers: volume %.5f -> %.5f m^3\n", v0, liquid.volume());
+    EXPECT_NEAR(liquid.volume(), v0, 0.01 * v0);
+  }
+  {
+    LiquidDef def = tank(32, 0.5, false);
+    def.surface = SurfaceMethod::height_field;
+    Liquid liquid(def);
+    const Real v0 = liquid.volume();
+    for (std::size_t i = 0; i < liquid.state.height.size(); ++i) {
+      liquid.state.height[i] = 0.5 + 0.05 * std::cos(M_PI * (i + 0.5) / 32);
+    }
+    EXPECT_NEAR(liquid.volume(), v0, 1e-3 * v0);
+    LiquidStepStats stats;
+    for (int step = 0; step < 2000; ++step) {
+      liquid_substep(liquid.model, liquid.inputs, 0.002, liquid.state, liquid.ws, stats);
+    }
+    std::printf("sloshing height field: volume %.5f -> %.5f m^3\n", v0, liquid.volume());
+    EXPECT_NEAR(liquid.volume(), v0, 0.01 * v0);
+  }
+}
+
+// The first mode of a tank of length L and depth D: omega^2 = g k tanh(k D), k = pi / L.
+Real sloshing_period(int cells, SurfaceMethod surface) {
+  // An amplitude of a few marker spacings (k a = 0.13: linear theory within 1%).
+  constexpr Real kDepth = 0.5, kAmplitude = 0.04;
+  LiquidDef def = tank(cells, kDepth, false);
+  def.surface = surface;
+  def.markers_per_axis = 3;
+
+  Liquid liquid(def);
+  auto surface_at = [&](Real x) { return kDepth + kAmplitude * std::cos(M_PI * x); };
+  if (surface == SurfaceMethod::height_field) {
+    for (int i = 0; i < cells; ++i) liquid.state.height[i] = surface_at((i + 0.5) / cells);
+  } else {
+    LiquidDef full = tank(cells, 1.0, false);
+    full.surface = surface;
+    full.markers_per_axis = 3;
+    liquid.state.markers =
+        initial_liquid_state(build_liquid_model(full, liquid.inputs.gravity, "test.json", 0),
+                             liquid.inputs.gravity)
+            .markers;
+    std::erase_if(liquid.state.markers, [&](const Vec3& x) { return x.z() > surface_at(x.x()); });
+  }
+  // The first mode's amplitude, as the liquid's excess in the left half over the right half
+  // (an integral, which the markers' quantization of the surface averages out).
+  auto left_height = [&] {
+    Real left = 0, right = 0;
+    if (surface == SurfaceMethod::height_field) {
+      for (int i = 0; i < cells; ++i) (i < cells / 2 ? left : right) += liquid.state.height[i];
+      return kDepth + (left - right) / cells;
+    }
+    for (const Vec3& x : liquid.state.markers) (x.x() < 0.5 ? left : right) += 1;
+    return kDepth + (left - right) / (left + right);
+  };
+  // The signal at 240 Hz for 4 s (almost four periods), averaged over 0.1 s (the markers' count
+  // moves in steps and flickers about zero), then its upward crossings of zero, linearly
+  // interpolated in time.
+  constexpr Real kFrame = 1.0 / 240;
+  constexpr int kFrames = 960, kWindow = 12;
+  std::vector<Real> signal{left_height() - kDepth};
+  for (int frame = 1; frame < kFrames; ++frame) {
+    liquid.run(kFrame);
+    signal.push_back(left_height() - kDepth);
+  }
+  std::vector<Real> crossings;
+  Real previous = 0;
+  for (int f = kWindow; f + kWindow < kFrames; ++f) {
+    Real now = 0;
+    for (int w = -kWindow; w <= kWindow; ++w) now += signal[f + w] / (2 * kWindow + 1);
+    if (f > kWindow && previous < 0 && now >= 0) {
+      crossings.push_back(kFrame * (f - now / (now - previous)));
+    }
+    previous = now;
+  }
+  if (crossings.size() < 2) return 0;
+  return (crossings.back() - crossings.front()) / (crossings.size() - 1);
+}
+
+TEST(LiquidSolver, SloshingPeriodApproachesLinearWaveTheoryUnderRefinement) {
+  const Real k = M_PI, depth = 0.5;
+  const Real expected = 2 * M_PI / std::sqrt(kG * k * std::tanh(k * depth));
+  const Real coarse = sloshing_period(16, SurfaceMethod::markers);
+  const Real fine = sloshing_period(32, SurfaceMethod::markers);
+  // The height field's period is within 2% at both (1.186 s, 1.200 s) but not closer at the
+  // finer grid: asserted within the 5% only.
+  const Real coarse_height = sloshing_period(16, SurfaceMethod::height_field);
+  const Real fine_height = sloshing_period(32, SurfaceMethod::height_field);
+  std::printf("height field: 16 cells %.4f s, 32 cells %.4f s\n", coarse_height, fine_height);
+  EXPECT_NEAR(coarse_height, expected, 0.05 * expected);
+  EXPECT_NEAR(fine_height, expected, 0.05 * expected);
+  std::printf("sloshing period: theory %.4f s, 16 cells %.4f s, 32 cells %.4f s\n", expected,
+              coarse, fine);
+  EXPECT_NEAR(coarse, expected, 0.05 * expected);
+  EXPECT_NEAR(fine, expected, 0.05 * expected);
+  EXPECT_LT(std::abs(fine - expected), std::abs(coarse - expected));
+}
+
+TEST(LiquidSolver, ThreeSolversReachTheSamePressure) {
+  LiquidDef def = dam_break(24);
+  Liquid base(def);
+  base.run(0.3);  // a moving, splashing state
+  std::vector<std::vector<Real>> pressures;
+  for (PressureSolver solver :
+       {PressureSolver::relaxation, PressureSolver::mic_pcg, PressureSolver::mgpcg}) {
+    LiquidDef d = def;
+    d.solver = solver;
+    d.tolerance = 1e-8;
+    d.max_iterations = 20000;
+    Liquid liquid(d);
+    liquid.state = base.state;
+    LiquidStepStats stats;
+    liquid_substep(liquid.model, liquid.inputs, 0.005, liquid.state, liquid.ws, stats);
+    EXPECT_EQ(stats.unconverged, 0);
+    EXPECT_LT(stats.divergence, 1e-8);
+    pressures.push_back(liquid.state.pressure);
+    std::printf("solver %d: %d iterations\n", static_cast<int>(solver), stats.iterations);
+  }
+  Real scale = 0;
+  for (Real p : pressures[1]) scale = std::max(scale, std::abs(p));
+  for (std::size_t c = 0; c < pressures[0].size(); ++c) {
+    EXPECT_NEAR(pressures[0][c], pressures[1][c], 1e-6 * scale);
+    EXPECT_NEAR(pressures[2][c], pressures[1][c], 1e-6 * scale);
+  }
+}
+
+TEST(LiquidSolver, InflowAddsItsVolumeFlux) {
+  LiquidDef def = tank(32, 0.25, false);
+  InflowDef inflow;
+  inflow.box = {Vec3(0, 0, 0.5), Vec3(1.0 / 32, 1, 0.5 + 4.0 / 32)};  // 4 cells of the left wall
+  inflow.velocity = Vec3(0.5, 0, 0);
+  def.inflows.push_back(inflow);
+  Liquid liquid(def);
+  const Real v0 = liquid.volume();
+  liquid.run(1.0);
+  const Real added = 0.5 * (4.0 / 32) * (1.0 / 32) * 1.0;  // u A t, A per unit thickness
+  const Real measured = liquid.volume() - v0;
+  std::printf("inflow: expected %.5f m^3, measured %.5f m^3\n", added, measured);
+  EXPECT_NEAR(measured, added, 0.1 * added);
+}
+
+TEST(LiquidSolver, SameStartSameBits) {
+  auto run = [] {
+    Liquid liquid(dam_break(24));
+    liquid.run(0.5);
+    std::uint64_t h = 1469598103934665603ull;
+    hash_liquid_state(liquid.state, h);
+    return h;
+  };
+  EXPECT_EQ(run(), run());
+}
+
+}  // namespace
+}  // namespace pbm
