@@ -9,6 +9,7 @@
 #include "bench_constraints.h"
 #include "bench_drag.h"
 #include "bench_figures.h"
+#include "bench_liquid.h"
 #include "bench_render.h"
 #include "bullet_soft_ellipsoid.h"
 #include "core/error.h"
@@ -113,10 +114,12 @@ int run_bench(const BenchOptions& o) {
   if (o.what == "constraints") return run_bench_constraints(o.max_constraints);
   if (o.what == "drag") return run_bench_drag(o.scene, std::max(1, o.steps));
   if (o.what == "figures") return run_bench_figures();
+  // --steps 128 adds the 128^3 grid (about 2 GB and a few minutes).
+  if (o.what == "liquid") return run_bench_liquid(o.steps >= 128 ? 128 : 64);
   if (o.what != "deform") {
     spdlog::error(
-        "unknown benchmark '{}' (known: deform, render, constraints, drag, figures, tradeoff, "
-        "realtime)",
+        "unknown benchmark '{}' (known: deform, render, constraints, drag, figures, liquid, "
+        "tradeoff, realtime)",
         o.what);
     return 2;
   }

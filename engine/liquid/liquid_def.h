@@ -58,9 +58,11 @@ struct LiquidDef {
   LiquidAdvection advection = LiquidAdvection::semi_lagrangian;
   PressureSolver solver = PressureSolver::mic_pcg;
   SurfaceMethod surface = SurfaceMethod::markers;
-  Real cfl = 0.5;             // the CFL number (16.3) each substep keeps to, in (0, 1]
-  Real relaxation = 1.7;      // beta_0 of (16.7), in [1, 2)
-  Real tolerance = 1e-4;      // epsilon: every Full cell's |D| of (16.5) below it [1/s]
+  Real cfl = 0.5;         // the CFL number (16.3) each substep keeps to, in (0, 1]
+  Real relaxation = 1.7;  // beta_0 of (16.7), in [1, 2)
+  Real tolerance = 1e-4;  // epsilon: every Full cell's |D| of (16.5) below it [1/s]
+  // Or, when > 0, the solve's residual ||D - A dp||_2 below this fraction of ||D||_2.
+  Real relative_tolerance = 0;
   int max_iterations = 1000;  // of a pressure solve
   int markers_per_axis = 2;   // markers per cell along each axis of the grid's plane
   // Surface cells' pressure placed at the surface inside the cell (its fill) rather than at the

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/wall_clock.h"
 #include "liquid/boundary_conditions.h"
 #include "liquid/cell_labels.h"
 #include "liquid/momentum.h"
@@ -107,10 +108,13 @@ void liquid_substep(const LiquidModel& model, const LiquidInputs& inputs, Real d
                   field);
   set_wall_velocities(model, ws.flags, field);
   // 6: the pressure iteration.
-  const PressureSolveOptions options{
-      .tolerance = model.def.tolerance, .relative = 0, .max_iterations = model.def.max_iterations};
+  const PressureSolveOptions options{.tolerance = model.def.tolerance,
+                                     .relative = model.def.relative_tolerance,
+                                     .max_iterations = model.def.max_iterations};
+  const WallClock::time_point solve_start = WallClock::now();
   const PressureSolveStats solve =
       solve_pressure(model, model.def.solver, dt, dirichlet, options, ws, field, state.pressure);
+  stats.solve_seconds += seconds_since(solve_start);
   // 7: the Surface cells' velocities again, and what lies beyond them.
   set_surface_velocities(model, ws.flags, field);
   set_wall_velocities(model, ws.flags, field);

@@ -19,6 +19,7 @@ struct LiquidStepStats {
   Real dt_min = 0, dt_max = 0;  // the substeps' lengths [s]
   int removed = 0;              // markers that left by an outflow
   int dropped = 0;              // markers an inflow could not release (the capacity)
+  double solve_seconds = 0;     // wall time in the pressure solves (a cost, never a result)
 };
 
 struct LiquidInputs {
