@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/bits.h"
 #include "liquid/cell_labels.h"
 
 namespace pbm {
@@ -144,13 +145,7 @@ LiquidState initial_liquid_state(const LiquidModel& model, const Vec3& gravity) 
 }
 
 void hash_liquid_state(const LiquidState& s, std::uint64_t& h) {
-  auto mix = [&h](const void* data, std::size_t n) {
-    const auto* bytes = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < n; ++i) {
-      h ^= bytes[i];
-      h *= 1099511628211ull;
-    }
-  };
+  auto mix = [&h](const void* data, std::size_t n) { fnv1a_mix(h, data, n); };
   mix(&s.time, sizeof s.time);
   for (const auto& c : s.velocity.u) mix(c.data(), sizeof(Real) * c.size());
   mix(s.pressure.data(), sizeof(Real) * s.pressure.size());

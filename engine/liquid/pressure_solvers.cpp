@@ -116,10 +116,7 @@ void relax_pressure(const LiquidModel& model, Real dt, const PressureSolveOption
   // substep, and an over-relaxed sweep (beta_0 > 1) applied to the rounding errors of a converged
   // field each substep amplifies them (by 1.8 a substep at beta_0 = 1.7 on still water), where a
   // sweep only when needed leaves them to grow by rounding alone.
-  Real start = 0;
-  for (int c : ws.cell_of_row)
-    start = std::max(start, std::abs(cell_divergence(g, field, c) - ws.target[at(c)]));
-  if (start < options.tolerance) {
+  if (max_full_divergence(model, ws, field) < options.tolerance) {
     stats.converged = true;
     return;
   }
@@ -135,14 +132,9 @@ void relax_pressure(const LiquidModel& model, Real dt, const PressureSolveOption
     stats.iterations = sweep + 1;
     // The sweep's D were each taken before the cell's own update and its neighbours' later ones:
     // the criterion is the divergence the sweep leaves.
-    if (worst < options.tolerance) {
-      Real after = 0;
-      for (int c : ws.cell_of_row)
-        after = std::max(after, std::abs(cell_divergence(g, field, c) - ws.target[at(c)]));
-      if (after < options.tolerance) {
-        stats.converged = true;
-        break;
-      }
+    if (worst < options.tolerance && max_full_divergence(model, ws, field) < options.tolerance) {
+      stats.converged = true;
+      break;
     }
   }
 }

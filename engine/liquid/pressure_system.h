@@ -42,7 +42,8 @@ PressureSolveStats solve_pressure(const LiquidModel& model, PressureSolver solve
                                   LiquidWorkspace& ws, MacField& field,
                                   std::vector<Real>& pressure);
 
-// The largest |div u| over the Full cells [1/s].
+// The largest |div u - target| over the Full cells [1/s] (the target is 0 without the volume
+// correction).
 Real max_full_divergence(const LiquidModel& model, const LiquidWorkspace& ws,
                          const MacField& field);
 

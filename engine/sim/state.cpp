@@ -2,6 +2,8 @@
 
 #include <cstring>
 
+#include "core/bits.h"
+
 namespace pbm {
 
 State initial_state(const Model& model) {
@@ -40,14 +42,8 @@ State initial_state(const Model& model) {
 }
 
 std::uint64_t hash_state(const State& state) {
-  std::uint64_t h = 1469598103934665603ull;
-  auto mix = [&h](const void* data, std::size_t n) {
-    const auto* bytes = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < n; ++i) {
-      h ^= bytes[i];
-      h *= 1099511628211ull;
-    }
-  };
+  std::uint64_t h = kFnvOffset;
+  auto mix = [&h](const void* data, std::size_t n) { fnv1a_mix(h, data, n); };
   mix(&state.time, sizeof state.time);
   mix(state.q.data(), sizeof(Real) * state.q.size());
   mix(state.v.data(), sizeof(Real) * state.v.size());
