@@ -170,6 +170,31 @@ std::string frame_stats_json(const World& world, const FrameStats& s, long frame
                            {"pressing", sb.pressing},
                            {"push_impulse", sb.push_impulse}};
   }
+  // Each liquid (sim/stages_liquid.h): what it holds and what its own substeps cost.
+  if (!model.liquids.empty()) {
+    nlohmann::json liquids = nlohmann::json::array();
+    for (std::size_t l = 0; l < s.liquids.size(); ++l) {
+      const LiquidFrameStats& ls = s.liquids[l];
+      const LiquidStepStats& st = ls.step;
+      liquids.push_back({{"name", model.liquids[l].def.name},
+                         {"volume", ls.volume},
+                         {"markers", ls.markers},
+                         {"kinetic_energy", ls.kinetic},
+                         {"max_speed", ls.max_speed},
+                         {"substeps", st.substeps},
+                         {"dt_min", st.dt_min},
+                         {"dt_max", st.dt_max},
+                         {"cfl", st.cfl},
+                         {"pressure_iterations", st.iterations},
+                         {"max_pressure_iterations", st.max_iterations},
+                         {"unconverged_solves", st.unconverged},
+                         {"divergence", st.divergence},
+                         {"markers_removed", st.removed},
+                         {"markers_dropped", st.dropped},
+                         {"solve_seconds", st.solve_seconds}});
+    }
+    j["liquids"] = std::move(liquids);
+  }
   return j.dump();
 }
 

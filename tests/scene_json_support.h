@@ -129,6 +129,22 @@ inline json full_scene() {
          "angular": [0.1, 0, 0], "frame": "site"},
         {"time": 0.25, "segment": "base", "impulse": [0, 0, 4]}
       ]}
+    ],
+    "liquids": [
+      {"name": "tank", "domain": {"min": [-1, -0.5, 0], "max": [1, 0.5, 1.5]},
+       "resolution": [8, 1, 6],
+       "fluid": [{"box": {"min": [-1, -0.5, 0], "max": [0, 0.5, 1]}, "velocity": [0.1, 0, 0]}],
+       "solids": [{"min": [0.5, -0.5, 0], "max": [1, 0.5, 0.25]}],
+       "inflows": [{"box": {"min": [-1, -0.5, 1.25], "max": [-0.75, 0.5, 1.5]},
+                    "velocity": [0.8, 0, 0], "markers_per_second": 500}],
+       "outflows": [{"min": [0.75, -0.5, 1.25], "max": [1, 0.5, 1.5]}],
+       "density": 900, "viscosity": 0.003, "walls": "no_slip", "surface_pressure": 10,
+       "advection": "book", "solver": "relaxation", "surface": "markers", "cfl": 0.3,
+       "relaxation": 1.5, "tolerance": 1e-5, "relative_tolerance": 1e-3,
+       "max_iterations": 300, "max_substeps": 50, "markers_per_axis": 3, "ghost_fluid": false,
+       "volume_correction": 0.1},
+      {"resolution": [4, 4, 4], "surface": "height_field", "solver": "mgpcg",
+       "fluid": [{"box": {"min": [0, 0, 0], "max": [1, 1, 0.5]}}]}
     ]
   })");
   // Motion capture needs a real clip: the repository's, by its absolute path.
@@ -160,8 +176,54 @@ inline void expect_same_keys(const std::vector<Keyframe>& a, const std::vector<K
   }
 }
 
+inline void expect_same_box(const LiquidBoxDef& a, const LiquidBoxDef& b) {
+  EXPECT_EQ(a.min, b.min);
+  EXPECT_EQ(a.max, b.max);
+}
+
+inline void expect_same_liquid(const LiquidDef& x, const LiquidDef& y) {
+  EXPECT_EQ(x.name, y.name);
+  expect_same_box(x.domain, y.domain);
+  EXPECT_EQ(x.resolution, y.resolution);
+  ASSERT_EQ(x.fluid.size(), y.fluid.size());
+  for (std::size_t k = 0; k < x.fluid.size(); ++k) {
+    expect_same_box(x.fluid[k].box, y.fluid[k].box);
+    EXPECT_EQ(x.fluid[k].velocity, y.fluid[k].velocity);
+  }
+  ASSERT_EQ(x.solids.size(), y.solids.size());
+  for (std::size_t k = 0; k < x.solids.size(); ++k) expect_same_box(x.solids[k], y.solids[k]);
+  ASSERT_EQ(x.inflows.size(), y.inflows.size());
+  for (std::size_t k = 0; k < x.inflows.size(); ++k) {
+    expect_same_box(x.inflows[k].box, y.inflows[k].box);
+    EXPECT_EQ(x.inflows[k].velocity, y.inflows[k].velocity);
+    EXPECT_EQ(x.inflows[k].markers_per_second, y.inflows[k].markers_per_second);
+  }
+  ASSERT_EQ(x.outflows.size(), y.outflows.size());
+  for (std::size_t k = 0; k < x.outflows.size(); ++k) {
+    expect_same_box(x.outflows[k], y.outflows[k]);
+  }
+  EXPECT_EQ(x.density, y.density);
+  EXPECT_EQ(x.viscosity, y.viscosity);
+  EXPECT_EQ(x.walls, y.walls);
+  EXPECT_EQ(x.surface_pressure, y.surface_pressure);
+  EXPECT_EQ(x.advection, y.advection);
+  EXPECT_EQ(x.solver, y.solver);
+  EXPECT_EQ(x.surface, y.surface);
+  EXPECT_EQ(x.cfl, y.cfl);
+  EXPECT_EQ(x.relaxation, y.relaxation);
+  EXPECT_EQ(x.tolerance, y.tolerance);
+  EXPECT_EQ(x.relative_tolerance, y.relative_tolerance);
+  EXPECT_EQ(x.max_iterations, y.max_iterations);
+  EXPECT_EQ(x.max_substeps, y.max_substeps);
+  EXPECT_EQ(x.markers_per_axis, y.markers_per_axis);
+  EXPECT_EQ(x.ghost_fluid, y.ghost_fluid);
+  EXPECT_EQ(x.volume_correction, y.volume_correction);
+}
+
 // Every field of a and b equal, bit for bit.
 inline void expect_same_scene(const Scene& a, const Scene& b) {
+  ASSERT_EQ(a.liquids.size(), b.liquids.size());
+  for (std::size_t i = 0; i < a.liquids.size(); ++i) expect_same_liquid(a.liquids[i], b.liquids[i]);
   EXPECT_EQ(a.name, b.name);
   EXPECT_EQ(a.gravity, b.gravity);
   EXPECT_EQ(a.solver.dt, b.solver.dt);

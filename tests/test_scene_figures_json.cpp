@@ -116,7 +116,7 @@ TEST(SceneFiguresJson, ASceneMayHoldOnlyFigures) {
   ASSERT_EQ(s.figures.size(), 1u);
   EXPECT_EQ(s.figures[0].name, "figure0");
   EXPECT_EQ(s.figures[0].segments[0].name, "segment0");
-  expect_text_error(R"({"figures": []})", "bodies", "is required (or 'figures')");
+  expect_text_error(R"({"figures": []})", "bodies", "is required (or 'figures' or 'liquids')");
 }
 
 TEST(SceneFiguresJsonErrors, ErrorsNameTheirPath) {

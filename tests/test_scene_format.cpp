@@ -115,6 +115,18 @@ std::string compare(const json& root, const json& property, const FieldFormat& f
                      resolved(root, p["items"]).value("type", "") == "number"
                  ? ""
                  : "numbers " + p.dump();
+    case ValueType::counts: {
+      if (!type_is("array") || p.value("minItems", -1) != format.size ||
+          p.value("maxItems", -1) != format.size) {
+        return "not an array of " + std::to_string(format.size);
+      }
+      const json items = resolved(root, p["items"]);
+      if (items.value("type", "") != "integer") return "items are not integers";
+      if (bounds_in(items) != bounds_of(format.range, format.limit)) {
+        return "item bounds " + items.dump();
+      }
+      return "";
+    }
     case ValueType::keys:
       return type_is("array") && p.value("minItems", 0) == 1 &&
                      p.value("maxItems", 0.0) == format.limit
@@ -181,7 +193,7 @@ TEST(SceneFormat, EverySectionIsReachedFromTheScene) {
     if (field.format.type == ValueType::list) lists.emplace_back(field.format.key);
   }
   EXPECT_EQ(lists, (std::vector<std::string>{"bodies", "obstacles", "force_fields", "springs",
-                                             "tracks", "constraints", "figures"}));
+                                             "tracks", "constraints", "figures", "liquids"}));
 }
 
 TEST(SceneFormat, NewItemsAreValid) {
@@ -207,7 +219,9 @@ TEST(SceneFormat, DefaultsAreWhatTheParserGives) {
           "obstacles": [{}, {"kind": "box"}, {"kind": "mesh", "file": "a.obj"}],
           "constraints": [{"kind": "hinge", "a": {"body": 0, "point": [0, 0, 0]},
                            "b": {"world": [0, 0, 0]}}],
-          "figures": [{"segments": [{"sites": [{}]}]}]})");
+          "figures": [{"segments": [{"sites": [{}]}]}],
+          "liquids": [{"fluid": [{"box": {"min": [0, 0, 0], "max": [1, 1, 0.5]}}],
+                       "inflows": [{"box": {"min": [0, 0, 0.5], "max": [0.2, 1, 0.7]}}]}]})");
   const json written = json::parse(scene_to_json(parse_scene(given.dump(), kFile)));
   const std::vector<SectionDescription> sections = describe_scene_format();
   const std::vector<std::pair<std::string, json::json_pointer>> items = {
@@ -229,7 +243,10 @@ TEST(SceneFormat, DefaultsAreWhatTheParserGives) {
       {"segment", json::json_pointer("/figures/0/segments/0")},
       {"joint", json::json_pointer("/figures/0/segments/0/joint")},
       {"segment_shape", json::json_pointer("/figures/0/segments/0/shape")},
-      {"site", json::json_pointer("/figures/0/segments/0/sites/0")}};
+      {"site", json::json_pointer("/figures/0/segments/0/sites/0")},
+      {"liquid", json::json_pointer("/liquids/0")},
+      {"fluid_region", json::json_pointer("/liquids/0/fluid/0")},
+      {"inflow", json::json_pointer("/liquids/0/inflows/0")}};
   for (const auto& [name, pointer] : items) {
     const json& object = written[pointer];
     const json& input = given.contains(pointer) ? given[pointer] : json::object();

@@ -210,7 +210,7 @@ TEST(SceneJsonErrors, WrongTypes) {
 }
 
 TEST(SceneJsonErrors, MissingRequiredParts) {
-  expect_text_error(R"({"name": "empty"})", "bodies", "is required (or 'figures')");
+  expect_text_error(R"({"name": "empty"})", "bodies", "is required (or 'figures' or 'liquids')");
   expect_text_error(R"({"bodies": []})", "bodies", "at least one body");
   expect_text_error(R"({"bodies": [{}]})", "bodies[0].material", "is required");
   json j = full_scene();

@@ -64,7 +64,11 @@ struct LiquidDef {
   // Or, when > 0, the solve's residual ||D - A dp||_2 below this fraction of ||D||_2.
   Real relative_tolerance = 0;
   int max_iterations = 1000;  // of a pressure solve
-  int markers_per_axis = 2;   // markers per cell along each axis of the grid's plane
+  // Substeps one advance may take (the World advances a liquid at least once a frame): a flow
+  // whose CFL substeps shrink past it is unstable (the book's central differences at a high cell
+  // Reynolds number), and the run stops with a message rather than crawling.
+  int max_substeps = 500;
+  int markers_per_axis = 2;  // markers per cell along each axis of the grid's plane
   // Surface cells' pressure placed at the surface inside the cell (its fill) rather than at the
   // cell's centre (the book's): the ghost-fluid boundary, exact for still water.
   bool ghost_fluid = true;

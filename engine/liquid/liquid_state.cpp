@@ -153,6 +153,8 @@ void hash_liquid_state(const LiquidState& s, std::uint64_t& h) {
   mix(s.height.data(), sizeof(Real) * s.height.size());
   mix(s.released.data(), sizeof(Real) * s.released.size());
   mix(&s.released_total, sizeof s.released_total);
+  mix(&s.next_step, sizeof s.next_step);
+  mix(&s.overrun, sizeof s.overrun);
 }
 
 std::size_t liquid_state_bytes(const LiquidState& s) {

@@ -18,6 +18,12 @@ struct LiquidState {
   std::vector<Real> height;          // surface height per column (16.3.3) [m], height field only
   std::vector<Real> released;        // per inflow: markers owed but not yet released (a fraction)
   std::uint64_t released_total = 0;  // markers ever released: seeds where the next one goes
+  // The length the next substep may take (liquid_substep_limit after the last advance; 0 before
+  // the first) [s]: a caller stepping other systems in shorter steps advances the liquid once
+  // this much time has passed (sim/stages_liquid.h).
+  Real next_step = 0;
+  // 1 once an advance stopped at max_substeps short of its time (the run fails there).
+  int overrun = 0;
 };
 
 LiquidState initial_liquid_state(const LiquidModel& model, const Vec3& gravity);

@@ -137,11 +137,17 @@ void liquid_substep(const LiquidModel& model, const LiquidInputs& inputs, Real d
   stats.dt_max = std::max(stats.dt_max, dt);
 }
 
-void advance_liquid(const LiquidModel& model, const LiquidInputs& inputs, Real t_end,
+bool advance_liquid(const LiquidModel& model, const LiquidInputs& inputs, Real t_end,
                     LiquidState& state, LiquidWorkspace& ws, LiquidStepStats& stats) {
   // A remainder below this fraction of a substep is left to the next call.
   constexpr Real kNegligible = 1e-9;
+  int taken = 0;
   while (t_end - state.time > kNegligible * (1 + std::abs(t_end))) {
+    if (taken++ == model.def.max_substeps) {
+      state.overrun = 1;
+      state.next_step = liquid_substep_limit(model, inputs, state);
+      return false;
+    }
     const Real limit = liquid_substep_limit(model, inputs, state);
     const Real remaining = t_end - state.time;
     const Real n = std::ceil(remaining / limit - 1e-9);
@@ -149,6 +155,8 @@ void advance_liquid(const LiquidModel& model, const LiquidInputs& inputs, Real t
     liquid_substep(model, inputs, dt, state, ws, stats);
     if (n <= 1) state.time = t_end;  // exactly, whatever the rounding of the sum
   }
+  state.next_step = liquid_substep_limit(model, inputs, state);
+  return true;
 }
 
 }  // namespace pbm

@@ -37,8 +37,10 @@ Real liquid_substep_limit(const LiquidModel& model, const LiquidInputs& inputs,
 void liquid_substep(const LiquidModel& model, const LiquidInputs& inputs, Real dt,
                     LiquidState& state, LiquidWorkspace& ws, LiquidStepStats& stats);
 
-// Substeps until state.time reaches t_end (equal lengths within the limit).
-void advance_liquid(const LiquidModel& model, const LiquidInputs& inputs, Real t_end,
+// Substeps until state.time reaches t_end (equal lengths within the limit); then the limit of the
+// next one in state.next_step. At most def.max_substeps: false (and state.overrun = 1) when they
+// did not reach t_end.
+bool advance_liquid(const LiquidModel& model, const LiquidInputs& inputs, Real t_end,
                     LiquidState& state, LiquidWorkspace& ws, LiquidStepStats& stats);
 
 }  // namespace pbm

@@ -1,7 +1,7 @@
 // Scene: the parsed, validated content of a scene file (scenes/README.md documents the format).
 // The aggregate of every subsystem's definitions (each subsystem owns its Def structs, data below
 // the algorithms: deform/body_def.h, collide/obstacle_def.h, constrain/constraint_def.h,
-// figure/figure_def.h) and the
+// figure/figure_def.h, liquid/liquid_def.h) and the
 // scene-wide ones below. Plain definitions with defaults. sim/model.h compiles a Scene into a
 // Model.
 #pragma once
@@ -17,6 +17,7 @@
 #include "deform/body_def.h"
 #include "figure/figure_def.h"
 #include "integrate/integrators.h"
+#include "liquid/liquid_def.h"
 
 namespace pbm {
 
@@ -84,6 +85,7 @@ struct Scene {
   std::vector<TrackDef> tracks;
   std::vector<ConstraintDef> constraints;
   std::vector<FigureDef> figures;  // articulated figures (ch. 15)
+  std::vector<LiquidDef> liquids;  // liquid grids (ch. 16)
   std::optional<CameraDef> camera;
 };
 

@@ -61,6 +61,16 @@ inline constexpr NameTable<SegmentShapeKind, 4> kSegmentShapeKindNames{
      {"capsule", SegmentShapeKind::capsule}}};
 inline constexpr NameTable<ImpulseFrame, 2> kImpulseFrameNames{
     {{"world", ImpulseFrame::world}, {"site", ImpulseFrame::site}}};
+inline constexpr NameTable<LiquidAdvection, 2> kLiquidAdvectionNames{
+    {{"book", LiquidAdvection::book}, {"semi_lagrangian", LiquidAdvection::semi_lagrangian}}};
+inline constexpr NameTable<PressureSolver, 3> kPressureSolverNames{
+    {{"relaxation", PressureSolver::relaxation},
+     {"mic_pcg", PressureSolver::mic_pcg},
+     {"mgpcg", PressureSolver::mgpcg}}};
+inline constexpr NameTable<SurfaceMethod, 2> kSurfaceMethodNames{
+    {{"markers", SurfaceMethod::markers}, {"height_field", SurfaceMethod::height_field}}};
+inline constexpr NameTable<WallKind, 2> kWallKindNames{
+    {{"free_slip", WallKind::free_slip}, {"no_slip", WallKind::no_slip}}};
 
 // The scene file's name of a kind ("" if the table lacks it): what messages, CSV columns and
 // labels print, so they use the words a scene file does.

@@ -18,7 +18,9 @@ std::vector<SectionDescription> describe_scene_format() {
           describe_section(kControllerSection),   describe_section(kSegmentPairSection),
           describe_section(kImpulseSection),      describe_section(kSiteActuatorSection),
           describe_section(kMocapSection),        describe_section(kMocapJointSection),
-          describe_section(kMocapSiteSection)};
+          describe_section(kMocapSiteSection),    describe_section(kLiquidSection),
+          describe_section(kFluidRegionSection),  describe_section(kLiquidBoxSection),
+          describe_section(kInflowSection)};
 }
 
 const SectionDescription* find_section(const std::vector<SectionDescription>& sections,

@@ -41,6 +41,7 @@ enum class ValueType {
   track_target,     // the scene value a track drives (scene/track_targets.h)
   keys,             // [time, value] pairs, strictly increasing in time
   numbers,          // an array of at most FieldFormat::limit numbers, its length free (a q0)
+  counts,           // exactly FieldFormat::size integers, each in FieldFormat::range, <= limit
 };
 
 inline constexpr Real kUnbounded = std::numeric_limits<Real>::infinity();

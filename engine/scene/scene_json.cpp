@@ -25,6 +25,7 @@ constexpr Real kMaxSprings = 4096;
 constexpr Real kMaxTracks = 4096;
 constexpr Real kMaxConstraints = 1024;
 constexpr Real kMaxFigures = 256;
+constexpr Real kMaxLiquids = 16;  // each up to 256^3 cells: the memory, not the list, binds
 
 // Bodies come before every list that refers to them, tracks after what they drive.
 constexpr auto kSceneFields = std::to_array<Field<Scene>>({
@@ -72,14 +73,19 @@ constexpr auto kSceneFields = std::to_array<Field<Scene>>({
          .limit = kMaxFigures,
          .section = "figure",
          .description = "Articulated figures: trees of rigid segments (ch. 15)."}),
+    list<&Scene::liquids, kLiquidSection>(
+        {.key = "liquids",
+         .limit = kMaxLiquids,
+         .section = "liquid",
+         .description = "Liquids on a staggered grid with a free surface (ch. 16)."}),
 });
 
-// A scene simulates something: a deformable body or an articulated figure.
+// A scene simulates something: a deformable body, an articulated figure or a liquid.
 void check_scene(const JsonNode& node, Scene& scene, const ReadContext&) {
-  if (scene.bodies.empty() && scene.figures.empty()) {
+  if (scene.bodies.empty() && scene.figures.empty() && scene.liquids.empty()) {
     const std::optional<JsonNode> bodies = find_child(node, "bodies");
-    if (bodies) fail(*bodies, "needs at least one body (or a figure in 'figures')");
-    fail(JsonNode{node.value, "bodies", node.file}, "is required (or 'figures')");
+    if (bodies) fail(*bodies, "needs at least one body (or a figure or a liquid)");
+    fail(JsonNode{node.value, "bodies", node.file}, "is required (or 'figures' or 'liquids')");
   }
 }
 

@@ -34,6 +34,10 @@ extern const Section<SiteActuatorDef> kSiteActuatorSection;    // scene_figures_
 extern const Section<MocapDef> kMocapSection;                  // scene_figures_json.cpp
 extern const Section<MocapJointDef> kMocapJointSection;        // scene_figures_json.cpp
 extern const Section<MocapSiteDef> kMocapSiteSection;          // scene_figures_json.cpp
+extern const Section<LiquidDef> kLiquidSection;                // scene_liquids_json.cpp
+extern const Section<FluidRegionDef> kFluidRegionSection;      // scene_liquids_json.cpp
+extern const Section<LiquidBoxDef> kLiquidBoxSection;          // scene_liquids_json.cpp
+extern const Section<InflowDef> kInflowSection;                // scene_liquids_json.cpp
 
 // Whether an obstacle of `kind` has the key (its point is "point", "center" or "position").
 bool obstacle_has_key(ObstacleKind kind, std::string_view key);

@@ -11,6 +11,7 @@
 #include "control/joint_controller.h"
 #include "core/types.h"
 #include "figure/site_actuator.h"
+#include "liquid/liquid_step.h"
 #include "sim/segment_body_collisions.h"
 #include "sim/step_stage.h"
 
@@ -33,6 +34,16 @@ struct FigureFrameStats {
   std::vector<ControlSample> controllers;
   // Each site actuator of CompiledFigure::site_actuators at the measured state.
   std::vector<SitePull> site_actuators;
+};
+
+// A liquid at the measured state, and what its substeps cost since the previous measurement
+// (the frame's, with any attempt the guard rejected).
+struct LiquidFrameStats {
+  LiquidStepStats step;
+  Real volume = 0;     // Full cells whole, Surface cells by their fill [m^3]
+  int markers = 0;     // marker particles (16.3.1); 0 with a height field
+  Real kinetic = 0;    // 1/2 rho |u|^2 over the liquid's cells, u at their centres [J]
+  Real max_speed = 0;  // the fastest face of a liquid cell [m/s]
 };
 
 // Levels of detail chosen automatically (sim/level_of_detail.h) at the frame's start.
@@ -68,6 +79,7 @@ struct FrameStats {
   std::array<double, kSubsystemCount> subsystem_seconds{};  // by SubsystemId
   std::vector<BodyFrameStats> bodies;
   std::vector<FigureFrameStats> figures;
+  std::vector<LiquidFrameStats> liquids;
   BodyCollisionStats body_collisions;  // of the frame's last substep
   SegmentBodyStats segment_bodies;     // segments with bodies, of the frame's last substep
   LevelStats levels;

@@ -146,8 +146,8 @@ Model build_model(const Scene& scene) {
   model.scene = scene;
   model.gravity = scene.gravity;
   model.solver = scene.solver;
-  if (scene.bodies.empty() && scene.figures.empty()) {
-    throw Error(scene.file, "bodies", "needs at least one body (or a figure in 'figures')");
+  if (scene.bodies.empty() && scene.figures.empty() && scene.liquids.empty()) {
+    throw Error(scene.file, "bodies", "needs at least one body (or a figure or a liquid)");
   }
   for (int b = 0; b < static_cast<int>(scene.bodies.size()); ++b) {
     BodyModel body =
@@ -173,6 +173,10 @@ Model build_model(const Scene& scene) {
     model.figures.push_back(std::move(figure));
   }
   settle_initial_segment_overlaps(model);
+  for (std::size_t l = 0; l < scene.liquids.size(); ++l) {
+    model.liquids.push_back(
+        build_liquid_model(scene.liquids[l], scene.gravity, scene.file, static_cast<int>(l)));
+  }
   for (std::size_t o = 0; o < scene.obstacles.size(); ++o) {
     model.obstacles.push_back(build_obstacle_model(scene.obstacles[o], scene.file,
                                                    "obstacles[" + std::to_string(o) + "]"));
@@ -229,6 +233,9 @@ Model build_model(const Scene& scene) {
     model.notes += (model.notes.empty() ? "" : "; ") + note;
   }
   limit_substep(model);
+  // Nothing but liquids: their own CFL substeps are the only ones, so the frame is one substep of
+  // the World (solver.dt is the bodies' and figures' step).
+  if (model.bodies.empty() && model.figures.empty()) model.substep = 1.0 / model.solver.fps;
   model.body_collisions.constrained.assign(model.bodies.size(), 0);
   for (const PointConstraintModel& c : model.constraints.points) {
     const int a = c.ends[0].body, b = c.ends[1].body;

@@ -18,6 +18,7 @@
 #include "core/types.h"
 #include "deform/body_model.h"
 #include "figure/figure_build.h"
+#include "liquid/liquid_model.h"
 #include "scene/scene.h"
 #include "scene/track_targets.h"
 #include "sim/snapshot_geometry.h"
@@ -46,6 +47,8 @@ struct Model {
   // Articulated figures (ch. 15), each with its initial state; their slices of State follow the
   // bodies' (FigureModel::state_q_offset, state_v_offset).
   std::vector<CompiledFigure> figures;
+  // Liquid grids (ch. 16), each with its own state (State::liquids) on its own CFL clock.
+  std::vector<LiquidModel> liquids;
   // Some pair of segments may collide (sim/figure_collisions.h).
   bool segment_collisions = false;
   int n_q = 0, n_v = 0;

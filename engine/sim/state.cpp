@@ -38,6 +38,9 @@ State initial_state(const Model& model) {
       controller_start(c, x.x, x.x_dot, control + c.state_offset);
     }
   }
+  for (const LiquidModel& liquid : model.liquids) {
+    st.liquids.push_back(initial_liquid_state(liquid, model.gravity));
+  }
   return st;
 }
 
@@ -55,6 +58,7 @@ std::uint64_t hash_state(const State& state) {
   mix(&state.energy_scale, sizeof state.energy_scale);
   mix(state.dormant.data(), state.dormant.size());
   mix(state.impulses_applied.data(), sizeof(int) * state.impulses_applied.size());
+  for (const LiquidState& liquid : state.liquids) hash_liquid_state(liquid, h);
   return h;
 }
 

@@ -6,6 +6,7 @@
 
 #include "core/quaternion.h"
 #include "core/types.h"
+#include "liquid/liquid_state.h"
 #include "sim/model.h"
 
 namespace pbm {
@@ -41,6 +42,9 @@ struct State {
   // a frame's end is snapped to its exact time, so consecutive intervals may overlap by a
   // rounding error, and an event there would be applied twice.
   std::vector<int> impulses_applied;
+  // Per liquid: its grid's velocities, pressure and surface (liquid/liquid_state.h), at its own
+  // time (LiquidState::time, which trails `time` between its CFL substeps).
+  std::vector<LiquidState> liquids;
 };
 
 State initial_state(const Model& model);

@@ -64,6 +64,8 @@ const char* subsystem_name(SubsystemId id) {
       return "figures";
     case SubsystemId::segment_bodies:
       return "segment_bodies";
+    case SubsystemId::liquids:
+      return "liquids";
     case SubsystemId::count:
       break;
   }

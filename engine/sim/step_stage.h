@@ -5,8 +5,8 @@
 // evaluated (external forces, obstacles' push, controllers, the bodies' dynamics, constraint
 // forces, the kinematic rates) as often as the integrator asks, the integrator advances, then
 // the corrections after the step: unit quaternions, impacts, collisions between bodies, with
-// obstacles, within a body, the liquid and its coupling. Slots without a subsystem yet
-// (controllers, impacts, liquid, coupling) cost nothing and report 0.
+// obstacles, within a body, the liquid and its coupling. Slots without a subsystem (coupling)
+// cost nothing and report 0.
 #pragma once
 
 #include <array>
@@ -48,6 +48,7 @@ enum class SubsystemId {
   constraints,
   figures,
   segment_bodies,  // figures' segments with deformable bodies
+  liquids,         // liquid grids (ch. 16)
   count
 };
 inline constexpr int kSubsystemCount = static_cast<int>(SubsystemId::count);

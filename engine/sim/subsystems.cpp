@@ -6,6 +6,7 @@
 #include "sim/stages_constraints.h"
 #include "sim/stages_figure_control.h"
 #include "sim/stages_figures.h"
+#include "sim/stages_liquid.h"
 #include "sim/stages_obstacles.h"
 #include "sim/subsystem.h"
 
@@ -74,6 +75,13 @@ constexpr Subsystem kTable[] = {
      .present = stages::segment_bodies_present,
      .size_workspace = stages::size_segment_bodies,
      .substep = {{{S::body_collisions, stages::segment_body_collisions}}}},
+    {.id = SubsystemId::liquids,
+     .present = stages::liquids_present,
+     .size_workspace = stages::size_liquids,
+     .substep = {{{S::liquid, stages::advance_liquids}}},
+     .measure = stages::measure_liquids,
+     .describe_failure = stages::describe_liquid_failure,
+     .add_drawables = stages::add_liquid_drawables},
 };
 
 }  // namespace

@@ -15,6 +15,9 @@ std::size_t entry_bytes(const State& state, const FrameStats& stats) {
   for (const BodyFrameStats& body : stats.bodies) {
     n += sizeof(BodyFrameStats) + sizeof(Real) * static_cast<std::size_t>(body.q_s.size());
   }
+  // A liquid's grid and markers are most of a liquid scene's state (a 64^3 grid: tens of MB).
+  for (const LiquidState& liquid : state.liquids) n += liquid_state_bytes(liquid);
+  n += sizeof(LiquidFrameStats) * stats.liquids.size();
   return n;
 }
 

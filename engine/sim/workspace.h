@@ -16,6 +16,7 @@
 #include "figure/figure_workspace.h"
 #include "figure/stable_pd.h"
 #include "integrate/integrators.h"
+#include "liquid/liquid_step.h"
 #include "sim/figure_collisions.h"
 #include "sim/frame_stats.h"
 #include "sim/segment_body_collisions.h"
@@ -87,6 +88,10 @@ struct Workspace {
   std::optional<ConstraintProjectionWorkspace> constraint_projection;
   std::optional<BodyCollisionWorkspace> body_collisions;
   std::optional<FiguresWorkspace> figures;
+  // Per liquid (empty without any): its scratch, and what its substeps cost since the last
+  // measurement (sim/stages_liquid.h).
+  std::vector<LiquidWorkspace> liquids;
+  std::vector<LiquidStepStats> liquid_steps;
   BodyCollisionStats body_collision_stats;  // of the last substep
   SegmentBodyStats segment_body_stats;      // of the last substep
   int contacts = 0;  // touching nodes counted in the substep under way (-> State::contact_nodes)

@@ -1,0 +1,222 @@
+#include "sim/stages_liquid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "liquid/cell_labels.h"
+
+namespace pbm::stages {
+
+namespace {
+
+const draw::Material kWaterMaterial{{0.16f, 0.45f, 0.85f}, 0.15f};
+const draw::Material kLiquidSolidMaterial{{0.5f, 0.47f, 0.42f}, 0.9f};
+const draw::Vec3f kMarkerColor{0.25f, 0.55f, 0.95f};
+const draw::Vec3f kDomainColor{0.35f, 0.6f, 0.9f};
+
+LiquidInputs liquid_inputs(const Workspace& ws) {
+  return LiquidInputs{.gravity = ws.drive.gravity, .surface_pressure = 0};
+}
+
+// The first entry of `values` that is NaN or infinite, or -1.
+template <typename T>
+long first_not_finite(const std::vector<T>& values) {
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    if constexpr (std::is_same_v<T, Vec3>) {
+      if (!values[k].allFinite()) return static_cast<long>(k);
+    } else {
+      if (!std::isfinite(values[k])) return static_cast<long>(k);
+    }
+  }
+  return -1;
+}
+
+std::string cell_text(const MacGrid& g, long c) {
+  const long k = c / g.sz, j = (c % g.sz) / g.sy, i = c % g.sy;
+  return "(" + std::to_string(i) + ", " + std::to_string(j) + ", " + std::to_string(k) + ")";
+}
+
+// The 12 edges of a box, as segments.
+void add_box_edges(const Vec3& lo, const Vec3& hi, const draw::Vec3f& color, draw::Lines& lines) {
+  for (int a = 0; a < 3; ++a) {
+    const int b = (a + 1) % 3, c = (a + 2) % 3;
+    for (int corner = 0; corner < 4; ++corner) {
+      Vec3 p = lo, q;
+      p[b] = corner & 1 ? hi[b] : lo[b];
+      p[c] = corner & 2 ? hi[c] : lo[c];
+      q = p;
+      q[a] = hi[a];
+      lines.points.push_back(p.cast<float>());
+      lines.points.push_back(q.cast<float>());
+      lines.colors.push_back(color);
+    }
+  }
+}
+
+}  // namespace
+
+bool liquids_present(const Model& model) {
+  return !model.liquids.empty();
+}
+
+void size_liquids(const Model& model, Workspace& ws) {
+  ws.liquids.resize(model.liquids.size());
+  for (std::size_t l = 0; l < model.liquids.size(); ++l) {
+    size_liquid_workspace(model.liquids[l], ws.liquids[l]);
+  }
+  ws.liquid_steps.assign(model.liquids.size(), LiquidStepStats{});
+}
+
+void advance_liquids(const SubstepContext& c) {
+  const LiquidInputs inputs = liquid_inputs(c.ws);
+  // A frame's last substep ends within rounding of the frame's time, to which advance_frame then
+  // snaps the state's: the liquid goes there exactly.
+  Real target = c.state.time;
+  if (c.ws.substep_ends_frame) {
+    const Real fps = c.model.solver.fps;
+    const Real frame_time = std::round(c.state.time * fps) / fps;
+    if (std::abs(frame_time - target) < 1e-6 / fps) target = frame_time;
+  }
+  for (std::size_t l = 0; l < c.model.liquids.size(); ++l) {
+    LiquidState& liquid = c.state.liquids[l];
+    if (liquid.overrun) continue;  // the frame fails (describe_liquid_failure)
+    // Every decision reads the State only (next_step is part of it): bit-identical with any
+    // workspace.
+    // Once the next substep of the bodies would take the liquid past its own limit: it then
+    // advances in one substep of its own rather than two halves.
+    if (!c.ws.substep_ends_frame && c.state.time - liquid.time + c.dt < liquid.next_step) continue;
+    advance_liquid(c.model.liquids[l], inputs, target, liquid, c.ws.liquids[l],
+                   c.ws.liquid_steps[l]);
+  }
+}
+
+void measure_liquids(const Model& model, const Inputs& inputs, const State& state, Workspace& ws,
+                     FrameStats& stats) {
+  (void)inputs;
+  stats.liquids.resize(model.liquids.size());
+  for (std::size_t l = 0; l < model.liquids.size(); ++l) {
+    const LiquidModel& m = model.liquids[l];
+    const LiquidState& s = state.liquids[l];
+    LiquidWorkspace& w = ws.liquids[l];
+    LiquidFrameStats& out = stats.liquids[l];
+    // What the substeps since the last measurement cost; the next measurement starts afresh.
+    out.step = ws.liquid_steps[l];
+    ws.liquid_steps[l] = LiquidStepStats{};
+    label_cells(m, s, w.flags, w.fill, w.count);
+    out.volume = liquid_volume(m, w.flags, w.fill);
+    out.markers = static_cast<int>(s.markers.size());
+    const MacGrid& g = m.grid;
+    Real sum = 0, fastest = 0;
+    for (int c = 0; c < g.size; ++c) {
+      if (!is_liquid(w.flags[static_cast<std::size_t>(c)])) continue;
+      Real speed2 = 0;
+      for (int a = 0; a < 3; ++a) {
+        const std::vector<Real>& u = s.velocity.u[a];
+        const Real lo = u[static_cast<std::size_t>(c - g.stride(a))];
+        const Real hi = u[static_cast<std::size_t>(c)];
+        const Real centre = 0.5 * (lo + hi);
+        speed2 += centre * centre;
+        fastest = std::max({fastest, std::abs(lo), std::abs(hi)});
+      }
+      sum += speed2 * w.fill[static_cast<std::size_t>(c)];
+    }
+    out.kinetic = 0.5 * m.def.density * g.cell_volume() * sum;
+    out.max_speed = fastest;
+  }
+}
+
+std::string describe_liquid_failure(const Model& model, const State& state) {
+  for (std::size_t l = 0; l < model.liquids.size(); ++l) {
+    const LiquidModel& m = model.liquids[l];
+    const LiquidState& s = state.liquids[l];
+    const std::string name = "liquid '" + m.def.name + "'";
+    static constexpr const char* kAxis[] = {"u", "v", "w"};
+    for (int a = 0; a < 3; ++a) {
+      if (const long c = first_not_finite(s.velocity.u[a]); c >= 0) {
+        return name + ": velocity " + kAxis[a] + " became NaN or infinite at cell " +
+               cell_text(m.grid, c);
+      }
+    }
+    if (const long c = first_not_finite(s.pressure); c >= 0) {
+      return name + ": pressure became NaN or infinite at cell " + cell_text(m.grid, c);
+    }
+    if (const long k = first_not_finite(s.markers); k >= 0) {
+      return name + ": marker " + std::to_string(k) + " became NaN or infinite";
+    }
+    if (first_not_finite(s.height) >= 0) return name + ": the height field became NaN";
+    if (s.overrun) {
+      char text[400];
+      std::snprintf(text, sizeof text,
+                    ": %d substeps did not reach the frame's end (its CFL substeps shrank to "
+                    "%.3g s, cfl %g): the flow is unstable; advection \"semi_lagrangian\" is "
+                    "unconditionally stable, or raise max_substeps",
+                    m.def.max_substeps, s.next_step, m.def.cfl);
+      return name + text;
+    }
+  }
+  return {};
+}
+
+void add_liquid_drawables(const Model& model, const Inputs& inputs, const State& state,
+                          Workspace& ws, draw::Snapshot& snap) {
+  (void)inputs;
+  (void)ws;
+  for (std::size_t l = 0; l < model.liquids.size(); ++l) {
+    const LiquidModel& m = model.liquids[l];
+    const LiquidState& s = state.liquids[l];
+    const MacGrid& g = m.grid;
+    const Vec3 lo = m.def.domain.min, hi = m.def.domain.max;
+    snap.focus.add(lo.cast<float>());
+    snap.focus.add(hi.cast<float>());
+    draw::Lines& outline = snap.lines.emplace_back();
+    add_box_edges(lo, hi, kDomainColor, outline);
+    for (const LiquidBoxDef& box : m.def.solids) {
+      const Vec3 a = box.min.cwiseMax(lo), b = box.max.cwiseMin(hi);
+      snap.primitives.push_back({.shape = draw::PrimitiveShape::box,
+                                 .center = (0.5 * (a + b)).cast<float>(),
+                                 .half_size = (0.5 * (b - a)).cast<float>(),
+                                 .material = kLiquidSolidMaterial});
+    }
+    if (m.def.surface == SurfaceMethod::height_field && m.vertical_axis == 2 && m.thin_axis < 0) {
+      // The surface itself (16.3.3): one vertex per column at its centre.
+      draw::HeightField& field = snap.height_fields.emplace_back();
+      field.origin =
+          Vec3(g.origin.x() + 0.5 * g.h.x(), g.origin.y() + 0.5 * g.h.y(), 0).cast<float>();
+      field.cell = draw::Vec2f(static_cast<float>(g.h.x()), static_cast<float>(g.h.y()));
+      field.nx = g.n.x();
+      field.ny = g.n.y();
+      field.heights.assign(s.height.begin(), s.height.end());
+      field.material = kWaterMaterial;
+    } else if (m.def.surface == SurfaceMethod::height_field) {
+      // A 2D liquid's surface (or one whose columns are not along z): the columns' tops joined
+      // along the first horizontal axis.
+      const ColumnAxes axes = column_axes(m);
+      draw::Lines& surface = snap.lines.emplace_back();
+      surface.layer = draw::Layer::scene;
+      const int n0 = g.n[axes.h0], n1 = g.n[axes.h1];
+      for (int i1 = 0; i1 < n1; ++i1) {
+        for (int i0 = 0; i0 + 1 < n0; ++i0) {
+          for (int side = 0; side < 2; ++side) {
+            Vec3 x = g.centre(1, 1, 1);
+            x[axes.h0] = g.origin[axes.h0] + (i0 + side + 0.5) * g.h[axes.h0];
+            x[axes.h1] = g.origin[axes.h1] + (i1 + 0.5) * g.h[axes.h1];
+            x[axes.v] = s.height[static_cast<std::size_t>(i0 + side + n0 * i1)];
+            surface.points.push_back(x.cast<float>());
+          }
+          surface.colors.push_back(kWaterMaterial.color);
+        }
+      }
+    } else if (!s.markers.empty()) {
+      // The marker particles are the liquid (16.3.1): drawn in the picture, not as an overlay.
+      draw::Points& points = snap.points.emplace_back();
+      points.positions.reserve(s.markers.size());
+      for (const Vec3& x : s.markers) points.positions.push_back(x.cast<float>());
+      points.colors.assign(s.markers.size(), kMarkerColor);
+      points.size = 3;
+      points.layer = draw::Layer::scene;
+    }
+  }
+}
+
+}  // namespace pbm::stages

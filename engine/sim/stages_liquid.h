@@ -1,0 +1,23 @@
+// Liquids' part of the step (liquid/, ch. 16): each liquid advances on its own CFL clock at the
+// liquid stage, after the bodies' corrections; its volume, energy and cost are measured, a NaN
+// in its grid fails the frame, and its markers, height field and solid cells are drawn. Rows of
+// the subsystem table (sim/subsystems.cpp).
+#pragma once
+
+#include "sim/subsystem.h"
+
+namespace pbm::stages {
+
+bool liquids_present(const Model& model);
+void size_liquids(const Model& model, Workspace& ws);
+// A liquid advances to the substep's end when the frame ends there, or when one more substep of
+// the bodies would take it past its own next substep's length (LiquidState::next_step): shorter
+// substeps of the bodies do not cut its substeps shorter, and a frame's end finds it there.
+void advance_liquids(const SubstepContext& c);  // liquid
+void measure_liquids(const Model& model, const Inputs& inputs, const State& state, Workspace& ws,
+                     FrameStats& stats);
+std::string describe_liquid_failure(const Model& model, const State& state);
+void add_liquid_drawables(const Model& model, const Inputs& inputs, const State& state,
+                          Workspace& ws, draw::Snapshot& snap);
+
+}  // namespace pbm::stages
