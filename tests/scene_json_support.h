@@ -138,7 +138,7 @@ inline json full_scene() {
        "inflows": [{"box": {"min": [-1, -0.5, 1.25], "max": [-0.75, 0.5, 1.5]},
                     "velocity": [0.8, 0, 0], "markers_per_second": 500}],
        "outflows": [{"min": [0.75, -0.5, 1.25], "max": [1, 0.5, 1.5]}],
-       "density": 900, "viscosity": 0.003, "walls": "no_slip", "surface_pressure": 10,
+       "density": 900, "viscosity": 0.003, "drag": 1.2, "walls": "no_slip", "surface_pressure": 10,
        "advection": "book", "solver": "relaxation", "surface": "markers", "cfl": 0.3,
        "relaxation": 1.5, "tolerance": 1e-5, "relative_tolerance": 1e-3,
        "max_iterations": 300, "max_substeps": 50, "markers_per_axis": 3, "ghost_fluid": false,
@@ -204,6 +204,7 @@ inline void expect_same_liquid(const LiquidDef& x, const LiquidDef& y) {
   }
   EXPECT_EQ(x.density, y.density);
   EXPECT_EQ(x.viscosity, y.viscosity);
+  EXPECT_EQ(x.drag, y.drag);
   EXPECT_EQ(x.walls, y.walls);
   EXPECT_EQ(x.surface_pressure, y.surface_pressure);
   EXPECT_EQ(x.advection, y.advection);

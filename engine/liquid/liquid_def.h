@@ -53,6 +53,9 @@ struct LiquidDef {
   std::vector<LiquidBoxDef> outflows;  // cells the liquid leaves by at its natural rate
   Real density = 1000;                 // rho [kg/m^3], > 0
   Real viscosity = 1e-6;               // kinematic nu of (16.1) [m^2/s], >= 0
+  // C_d of the quadratic drag on bodies in the liquid (sim/liquid_body_loads.h): about 0.5 for
+  // a sphere, 1 for a cube face on.
+  Real drag = 0.5;
   WallKind walls = WallKind::free_slip;
   Real surface_pressure = 0;  // applied on Surface cells above the atmosphere's [Pa]
   LiquidAdvection advection = LiquidAdvection::semi_lagrangian;

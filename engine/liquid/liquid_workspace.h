@@ -25,6 +25,12 @@ struct LiquidWorkspace {
   std::vector<Real> dp, r, z, s, q, precon;  // conjugate gradients' vectors, MIC(0)'s factor
   std::vector<Real> height_next;             // the height field's update (16.12)
   MultigridHierarchy multigrid;
+  // What bodies in the liquid read (liquid/liquid_probe.h), rebuilt from the state before each
+  // of their substeps: the pressure continued past the liquid, the velocities.
+  std::vector<Real> probe_pressure;
+  std::vector<std::uint8_t> probe_known;
+  std::vector<int> probe_order;
+  MacField probe_velocity;
 };
 
 void size_liquid_workspace(const LiquidModel& model, LiquidWorkspace& ws);

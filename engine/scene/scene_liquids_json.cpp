@@ -120,6 +120,11 @@ constexpr auto kLiquidFields = std::to_array<Field<LiquidDef>>({
                                   .range = kNonNegative,
                                   .description = "Kinematic viscosity nu of (16.1) (water: "
                                                  "1e-6)."}),
+    value<&LiquidDef::drag>({.key = "drag",
+                             .range = {.lo = 0, .hi = 100},
+                             .description = "C_d of the drag on bodies in the liquid: -1/2 rho "
+                                            "C_d A |v_rel| v_rel over their faces moving into it "
+                                            "(16.16); 0: buoyancy alone."}),
     choice<&LiquidDef::walls, kWallKindNames>(
         {.key = "walls",
          .description = "The domain's and the solids' walls: free_slip (a plane of symmetry) or "

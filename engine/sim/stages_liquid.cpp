@@ -5,6 +5,8 @@
 #include <cstdio>
 
 #include "liquid/cell_labels.h"
+#include "liquid/liquid_probe.h"
+#include "sim/liquid_body_loads.h"
 
 namespace pbm::stages {
 
@@ -91,6 +93,51 @@ void advance_liquids(const SubstepContext& c) {
   }
 }
 
+bool liquid_bodies_present(const Model& model) {
+  return !model.liquids.empty() && !model.bodies.empty();
+}
+
+void size_liquid_bodies(const Model& model, Workspace& ws) {
+  ws.liquid_body_force.resize(model.bodies.size());
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    ws.liquid_body_force[b].assign(static_cast<std::size_t>(model.bodies[b].n_nodes()),
+                                   Vec3::Zero());
+  }
+}
+
+void liquid_probe_start(const SubstepContext& c) {
+  // Rebuilt every substep from the State alone, never kept from an earlier one: a retry, a seek
+  // or the adaptive integrator's rejection restores the State, and the bodies must feel the
+  // liquid it holds (docs/architecture.md, "Determinism").
+  for (std::size_t l = 0; l < c.model.liquids.size(); ++l) {
+    build_liquid_probe(c.model.liquids[l], c.state.liquids[l], c.ws.drive.gravity, c.ws.liquids[l]);
+  }
+}
+
+void liquid_body_forces(const RateContext& c) {
+  for (std::size_t b = 0; b < c.model.bodies.size(); ++b) {
+    std::vector<Vec3>& force = c.ws.liquid_body_force[b];
+    std::fill(force.begin(), force.end(), Vec3::Zero());
+    BodyWorkspace& bw = c.ws.bodies[b];
+    for (std::size_t l = 0; l < c.model.liquids.size(); ++l) {
+      add_liquid_loads(c.model.liquids[l], c.ws.liquids[l], c.model.bodies[b], bw, force);
+    }
+    for (std::size_t i = 0; i < force.size(); ++i) bw.force[i] += force[i];
+  }
+}
+
+void liquid_body_work(const SubstepContext& c) {
+  // The power of the last rate evaluation's forces at its velocities, over the substep: the
+  // rectangle rule, first order in dt like the guard's other allowances.
+  Real power = 0;
+  for (std::size_t b = 0; b < c.model.bodies.size(); ++b) {
+    const std::vector<Vec3>& force = c.ws.liquid_body_force[b];
+    const BodyWorkspace& bw = c.ws.bodies[b];
+    for (std::size_t i = 0; i < force.size(); ++i) power += force[i].dot(bw.x_dot[i]);
+  }
+  c.state.liquid_work += power * c.dt;
+}
+
 void measure_liquids(const Model& model, const Inputs& inputs, const State& state, Workspace& ws,
                      FrameStats& stats) {
   (void)inputs;
@@ -100,10 +147,25 @@ void measure_liquids(const Model& model, const Inputs& inputs, const State& stat
     const LiquidState& s = state.liquids[l];
     LiquidWorkspace& w = ws.liquids[l];
     LiquidFrameStats& out = stats.liquids[l];
+    out.body_force.setZero();
+    out.wetted_area = 0;
     // What the substeps since the last measurement cost; the next measurement starts afresh.
     out.step = ws.liquid_steps[l];
     ws.liquid_steps[l] = LiquidStepStats{};
-    label_cells(m, s, w.flags, w.fill, w.count);
+    if (model.bodies.empty()) {
+      label_cells(m, s, w.flags, w.fill, w.count);
+    } else {
+      // The push on the bodies at this state (their kinematics are measure_bodies'): the probe
+      // labels the cells too.
+      build_liquid_probe(m, s, ws.drive.gravity, w);
+      std::vector<Vec3> scratch;
+      for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+        scratch.assign(static_cast<std::size_t>(model.bodies[b].n_nodes()), Vec3::Zero());
+        const LiquidLoadTotals t = add_liquid_loads(m, w, model.bodies[b], ws.bodies[b], scratch);
+        out.body_force += t.force;
+        out.wetted_area += t.wetted_area;
+      }
+    }
     out.volume = liquid_volume(m, w.flags, w.fill);
     out.markers = static_cast<int>(s.markers.size());
     const MacGrid& g = m.grid;

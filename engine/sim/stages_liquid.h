@@ -16,6 +16,14 @@ void size_liquids(const Model& model, Workspace& ws);
 void advance_liquids(const SubstepContext& c);  // liquid
 void measure_liquids(const Model& model, const Inputs& inputs, const State& state, Workspace& ws,
                      FrameStats& stats);
+// Bodies in a liquid (sim/liquid_body_loads.h): the probe built from the liquids' state at
+// each substep's start, their buoyancy and drag added to the bodies' nodal forces, and the work
+// those forces did (State::liquid_work) after each substep.
+bool liquid_bodies_present(const Model& model);
+void size_liquid_bodies(const Model& model, Workspace& ws);
+void liquid_probe_start(const SubstepContext& c);  // step_start
+void liquid_body_forces(const RateContext& c);     // contact_forces
+void liquid_body_work(const SubstepContext& c);    // coupling
 std::string describe_liquid_failure(const Model& model, const State& state);
 void add_liquid_drawables(const Model& model, const Inputs& inputs, const State& state,
                           Workspace& ws, draw::Snapshot& snap);

@@ -56,6 +56,7 @@ std::uint64_t hash_state(const State& state) {
   mix(&state.contact_nodes, sizeof state.contact_nodes);
   mix(&state.energy_surplus, sizeof state.energy_surplus);
   mix(&state.energy_scale, sizeof state.energy_scale);
+  mix(&state.liquid_work, sizeof state.liquid_work);
   mix(state.dormant.data(), state.dormant.size());
   mix(state.impulses_applied.data(), sizeof(int) * state.impulses_applied.size());
   for (const LiquidState& liquid : state.liquids) hash_liquid_state(liquid, h);

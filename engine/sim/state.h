@@ -34,6 +34,10 @@ struct State {
   // [J], what the surplus is judged against.
   Real energy_surplus = 0;
   Real energy_scale = 0;
+  // Work the liquids' forces did on the bodies since the frame attempt's start [J]
+  // (sim/liquid_body_loads.h): the run-level guard counts it as work of an input. In the State
+  // so a step the adaptive integrator rejects takes its share back with it.
+  Real liquid_work = 0;
   // Per body: 1 while a body of level "auto" runs without its displacements (q_d = d-dot = 0;
   // sim/level_of_detail.h), decided at a frame's start; 0 for every other body.
   std::vector<std::uint8_t> dormant;

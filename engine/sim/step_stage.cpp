@@ -66,6 +66,8 @@ const char* subsystem_name(SubsystemId id) {
       return "segment_bodies";
     case SubsystemId::liquids:
       return "liquids";
+    case SubsystemId::liquid_bodies:
+      return "liquid_bodies";
     case SubsystemId::count:
       break;
   }

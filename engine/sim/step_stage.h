@@ -49,6 +49,7 @@ enum class SubsystemId {
   figures,
   segment_bodies,  // figures' segments with deformable bodies
   liquids,         // liquid grids (ch. 16)
+  liquid_bodies,   // bodies in a liquid: its buoyancy and drag on them (16.4)
   count
 };
 inline constexpr int kSubsystemCount = static_cast<int>(SubsystemId::count);

@@ -82,6 +82,12 @@ constexpr Subsystem kTable[] = {
      .measure = stages::measure_liquids,
      .describe_failure = stages::describe_liquid_failure,
      .add_drawables = stages::add_liquid_drawables},
+    {.id = SubsystemId::liquid_bodies,
+     .present = stages::liquid_bodies_present,
+     .size_workspace = stages::size_liquid_bodies,
+     .rates = {{{S::contact_forces, stages::liquid_body_forces}}},
+     .substep = {{{S::step_start, stages::liquid_probe_start},
+                  {S::coupling, stages::liquid_body_work}}}},
 };
 
 }  // namespace

@@ -92,6 +92,9 @@ struct Workspace {
   // measurement (sim/stages_liquid.h).
   std::vector<LiquidWorkspace> liquids;
   std::vector<LiquidStepStats> liquid_steps;
+  // Per body in a scene with liquids and bodies: the liquids' nodal forces at the last rate
+  // evaluation [N] (sim/liquid_body_loads.h), whose power the guard counts.
+  std::vector<std::vector<Vec3>> liquid_body_force;
   BodyCollisionStats body_collision_stats;  // of the last substep
   SegmentBodyStats segment_body_stats;      // of the last substep
   int contacts = 0;  // touching nodes counted in the substep under way (-> State::contact_nodes)

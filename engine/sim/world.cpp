@@ -288,6 +288,7 @@ FrameResult advance_frame(const World& world, const Inputs& inputs, State& state
   state.energy_scale = std::max(state.energy_scale, before.kinetic + before.elastic);
   // The drive depends on time only through tracks and the springs' windows.
   const bool timed_drive = !model.tracks.empty() || !model.springs.empty();
+  state.liquid_work = 0;  // each attempt starts from frame_start: its own work only
   ws.frame_start = state;
   if (timed_drive) {
     state.time = t_end;
@@ -341,8 +342,9 @@ FrameResult advance_frame(const World& world, const Inputs& inputs, State& state
       measure_state(world, inputs, state, ws, after);
       const Real e0 = before.kinetic + before.elastic;
       const Real e1 = after.kinetic + after.elastic;
-      const Real allowed = model.solver.energy_growth_bound *
-                           (e0 + std::abs(after.potential - before.potential) + floor);
+      const Real allowed =
+          model.solver.energy_growth_bound *
+          (e0 + std::abs(after.potential - before.potential) + floor + std::abs(state.liquid_work));
       if (!(e1 <= allowed)) {
         failure = "kinetic+elastic energy grew from " + std::to_string(e0) + " J to " +
                   std::to_string(e1) + " J in one frame";
@@ -353,14 +355,15 @@ FrameResult advance_frame(const World& world, const Inputs& inputs, State& state
         // inputs, accumulated while positive. A drive that depends on time (tracks moving
         // spring targets, rest shapes, gravity; springs switching on) works through the
         // potential's explicit change, integrated over the frame by the trapezoid rule on its
-        // two ends; moving obstacles and Baumgarte's feedback by their allowances.
+        // two ends; moving obstacles and Baumgarte's feedback by their allowances; the liquids'
+        // push on bodies by the work it did (State::liquid_work).
         Real drive_work = 0;
         if (timed_drive) {
           drive_work = 0.5 * (total_energy(after) - total_energy(ws.end_at_start_drive) +
                               total_energy(ws.start_at_end_drive) - total_energy(before));
         }
-        const Real growth =
-            total_energy(after) - total_energy(before) - drive_work - allowance.work;
+        const Real growth = total_energy(after) - total_energy(before) - drive_work -
+                            allowance.work - state.liquid_work;
         const Real surplus = std::max(0.0, state.energy_surplus + growth);
         // The scale counts the frame's end too: a ball dropped from rest has its kinetic energy
         // only there. An explosion is still caught: its surplus grows as fast as its energy,

@@ -1,0 +1,149 @@
+#include "liquid/liquid_probe.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "liquid/cell_labels.h"
+
+namespace pbm {
+
+namespace {
+
+constexpr std::uint8_t kUnknown = 0, kKnown = 1;
+
+}  // namespace
+
+void build_liquid_probe(const LiquidModel& model, const LiquidState& state, const Vec3& gravity,
+                        LiquidWorkspace& ws) {
+  const MacGrid& g = model.grid;
+  label_cells(model, state, ws.flags, ws.fill, ws.count);
+  std::vector<Real>& p = ws.probe_pressure;
+  std::vector<std::uint8_t>& known = ws.probe_known;
+  p.assign(static_cast<std::size_t>(g.size), 0.0);
+  known.assign(static_cast<std::size_t>(g.size), kUnknown);
+  const int v = model.vertical_axis;
+  // Gravity's component along the vertical axis and the stride one cell down (along gravity).
+  const Real gv = std::abs(gravity[v]);
+  const int down = gravity[v] <= 0 ? -g.stride(v) : g.stride(v);
+  const Real hv = g.h[v];
+  const Real applied = model.def.surface_pressure / model.def.density;
+  // Full cells: the solve's pressure. Surface cells: zero (plus the applied pressure) at the
+  // surface, which the fill puts (fill - 1/2) h above the centre of a cell filled from below.
+  for (int c = 0; c < g.size; ++c) {
+    const auto k = static_cast<std::size_t>(c);
+    if (ws.flags[k] == CellFlag::full) {
+      p[k] = state.pressure[k];
+      known[k] = kKnown;
+    } else if (ws.flags[k] == CellFlag::surface) {
+      p[k] = applied + gv * (ws.fill[k] - 0.5) * hv;
+      known[k] = kKnown;
+    }
+  }
+  // Empty (and Inflow, Outflow) cells: continued upwards from the cell below, in the order of
+  // height so each reads a cell already set; with nothing below, a cell's depth below the
+  // surface is negative: one cell's worth of negative pressure, clamped to 0 when read.
+  const int n_up = g.n[v] + 2;
+  const int s_up = -down;
+  // Visit cells bottom-up: every cell of the lowest layer (along gravity) first.
+  auto layer_index = [&](int c) {
+    const int i = c % g.sy, j = (c % g.sz) / g.sy, kk = c / g.sz;
+    const int idx[3] = {i, j, kk};
+    return s_up > 0 ? idx[v] : n_up - 1 - idx[v];
+  };
+  std::vector<int>& order = ws.probe_order;
+  order.clear();
+  for (int c = 0; c < g.size; ++c) {
+    if (!known[static_cast<std::size_t>(c)] &&
+        ws.flags[static_cast<std::size_t>(c)] != CellFlag::solid) {
+      order.push_back(c);
+    }
+  }
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return layer_index(a) < layer_index(b); });
+  for (int c : order) {
+    const int below = c + down;
+    const auto k = static_cast<std::size_t>(c);
+    if (below >= 0 && below < g.size && known[static_cast<std::size_t>(below)]) {
+      p[k] = p[static_cast<std::size_t>(below)] - gv * hv;
+    } else {
+      p[k] = -gv * hv;
+    }
+    known[k] = kKnown;
+  }
+  // Solid cells (walls, boxes, the ghost layer): the mean of their set neighbours' values
+  // continued to their centre, so the pressure a body feels beside a wall or on a floor is the
+  // liquid's, not the solid's zero. A second pass reaches the cells with only solid neighbours
+  // (the ghost layer's edges) from the first pass's.
+  for (int pass = 0; pass < 2; ++pass) {
+    order.clear();
+    for (int c = 0; c < g.size; ++c) {
+      const auto k = static_cast<std::size_t>(c);
+      if (known[k]) continue;
+      Real sum = 0;
+      int count = 0;
+      for (int a = 0; a < 3; ++a) {
+        for (int side = -1; side <= 1; side += 2) {
+          const int nb = c + side * g.stride(a);
+          if (nb < 0 || nb >= g.size || !known[static_cast<std::size_t>(nb)]) continue;
+          // p grows along gravity: the neighbour's value plus g . (x_c - x_nb).
+          sum += p[static_cast<std::size_t>(nb)] - gravity[a] * side * g.h[a];
+          ++count;
+        }
+      }
+      p[k] = count > 0 ? sum / count : -gv * hv;
+      if (count > 0 || pass == 1) order.push_back(c);
+    }
+    for (int c : order) known[static_cast<std::size_t>(c)] = kKnown;
+  }
+  for (int a = 0; a < 3; ++a) ws.probe_velocity.u[a] = state.velocity.u[a];
+}
+
+bool in_liquid_domain(const LiquidModel& model, const Vec3& x) {
+  for (int a = 0; a < 3; ++a) {
+    if (a == model.thin_axis) continue;
+    if (!(x[a] >= model.def.domain.min[a] && x[a] <= model.def.domain.max[a])) return false;
+  }
+  return true;
+}
+
+Real probe_pressure(const LiquidModel& model, const LiquidWorkspace& ws, const Vec3& x) {
+  if (!in_liquid_domain(model, x)) return 0;
+  const MacGrid& g = model.grid;
+  int base[3];
+  Real frac[3];
+  for (int a = 0; a < 3; ++a) {
+    if (a == model.thin_axis) {
+      base[a] = 1;
+      frac[a] = 0;
+      continue;
+    }
+    // Centres at integers (centre of cell i at i - 1/2 cells from the origin); 0 and n + 1 are
+    // the ghosts', which the continuation above has set.
+    Real s = (x[a] - g.origin[a]) / g.h[a] + 0.5;
+    s = std::clamp(s, 0.0, static_cast<Real>(g.n[a] + 1));
+    int b = std::min(static_cast<int>(s), g.n[a]);
+    base[a] = b;
+    frac[a] = s - b;
+  }
+  Real value = 0;
+  for (int c = 0; c < 8; ++c) {
+    const int di = c & 1, dj = (c >> 1) & 1, dk = (c >> 2) & 1;
+    const Real w =
+        (di ? frac[0] : 1 - frac[0]) * (dj ? frac[1] : 1 - frac[1]) * (dk ? frac[2] : 1 - frac[2]);
+    if (w == 0) continue;
+    value += w * ws.probe_pressure[static_cast<std::size_t>(
+                     g.index(base[0] + di, base[1] + dj, base[2] + dk))];
+  }
+  return std::max(0.0, value);
+}
+
+Vec3 probe_velocity(const LiquidModel& model, const LiquidWorkspace& ws, const Vec3& x) {
+  Vec3 y = x;
+  if (model.thin_axis >= 0) {
+    y[model.thin_axis] =
+        0.5 * (model.def.domain.min[model.thin_axis] + model.def.domain.max[model.thin_axis]);
+  }
+  return interpolate_velocity(model.grid, ws.probe_velocity.u, y);
+}
+
+}  // namespace pbm
