@@ -192,6 +192,11 @@ std::string frame_stats_json(const World& world, const FrameStats& s, long frame
                          {"markers_removed", st.removed},
                          {"markers_dropped", st.dropped},
                          {"solve_seconds", st.solve_seconds}});
+      if (!model.bodies.empty()) {
+        const Vec3& f = ls.body_force;
+        liquids.back()["body_force"] = {f.x(), f.y(), f.z()};
+        liquids.back()["wetted_area"] = ls.wetted_area;
+      }
     }
     j["liquids"] = std::move(liquids);
   }
