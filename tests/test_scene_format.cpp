@@ -193,7 +193,7 @@ TEST(SceneFormat, EverySectionIsReachedFromTheScene) {
     if (field.format.type == ValueType::list) lists.emplace_back(field.format.key);
   }
   EXPECT_EQ(lists, (std::vector<std::string>{"bodies", "obstacles", "force_fields", "springs",
-                                             "tracks", "constraints", "figures", "liquids"}));
+                                             "liquids", "tracks", "constraints", "figures"}));
 }
 
 TEST(SceneFormat, NewItemsAreValid) {

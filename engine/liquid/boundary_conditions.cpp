@@ -24,7 +24,7 @@ void for_each_face(const MacGrid& g, int a, Visit&& visit) {
 }  // namespace
 
 void set_wall_velocities(const LiquidModel& model, const std::vector<CellFlag>& flags,
-                         MacField& field) {
+                         const std::vector<Vec3>& inflow_velocity, MacField& field) {
   const MacGrid& g = model.grid;
   for (int a = 0; a < 3; ++a) {
     std::vector<Real>& u = field.u[a];
@@ -36,8 +36,7 @@ void set_wall_velocities(const LiquidModel& model, const std::vector<CellFlag>& 
       } else if (fl == CellFlag::inflow || fh == CellFlag::inflow) {
         const int c = fl == CellFlag::inflow ? lo : hi;
         const int inflow = model.inflow_of[static_cast<std::size_t>(c)];
-        u[static_cast<std::size_t>(f)] =
-            model.inflows[static_cast<std::size_t>(inflow)].velocity[a];
+        u[static_cast<std::size_t>(f)] = inflow_velocity[static_cast<std::size_t>(inflow)][a];
       }
     });
     const Real sign = model.def.walls == WallKind::no_slip ? -1.0 : 1.0;

@@ -11,11 +11,11 @@
 
 namespace pbm {
 
-// Faces of Solid cells carry no flow across; faces of Inflow cells their inflow's velocity; the
-// tangential velocity inside a wall mirrors the liquid's beside it: w0 = -w1 no-slip, w0 = w1
-// free-slip.
+// Faces of Solid cells carry no flow across; faces of Inflow cells their inflow's velocity (one
+// per inflow, as tracks set it, 16.6.1); the tangential velocity inside a wall mirrors the
+// liquid's beside it: w0 = -w1 no-slip, w0 = w1 free-slip.
 void set_wall_velocities(const LiquidModel& model, const std::vector<CellFlag>& flags,
-                         MacField& field);
+                         const std::vector<Vec3>& inflow_velocity, MacField& field);
 
 // The faces of Surface cells open to Empty cells (16.10 and the text after it): an open face
 // whose opposite face is closed takes the opposite's velocity (each dx/dx vanishes), and what

@@ -84,13 +84,22 @@ Real liquid_substep_limit(const LiquidModel& model, const LiquidInputs& inputs,
 
 void liquid_substep(const LiquidModel& model, const LiquidInputs& inputs, Real dt,
                     LiquidState& state, LiquidWorkspace& ws, LiquidStepStats& stats) {
+  // The driven values at the substep's start (16.6).
+  const Real since = state.time - inputs.time;
   const Real applied =
-      inputs.surface_pressure / model.def.density + model.def.surface_pressure / model.def.density;
+      (inputs.surface_pressure + inputs.surface_pressure_rate * since) / model.def.density +
+      model.def.surface_pressure / model.def.density;
+  ws.inflow_velocity.resize(model.inflows.size());
+  for (std::size_t s = 0; s < model.inflows.size(); ++s) {
+    ws.inflow_velocity[s] = inputs.inflows_driven
+                                ? Vec3(inputs.inflow_velocity + inputs.inflow_rate * since)
+                                : model.inflows[s].velocity;
+  }
   // 3-4: labels, boundary pressures and velocities.
   label_cells(model, state, ws.flags, ws.fill, ws.count);
   set_boundary_pressure(model, ws.flags, applied, state.pressure);
   MacField& field = state.velocity;
-  set_wall_velocities(model, ws.flags, field);
+  set_wall_velocities(model, ws.flags, ws.inflow_velocity, field);
   set_surface_velocities(model, ws.flags, field);
   extrapolate_velocities(model, ws.flags, kExtrapolationLayers, ws.known, ws.next_known, field);
   for (int a = 0; a < 3; ++a) ws.previous.u[a] = field.u[a];
@@ -106,7 +115,7 @@ void liquid_substep(const LiquidModel& model, const LiquidInputs& inputs, Real d
                                 .gravity = inputs.gravity,
                                 .dt = dt},
                   field);
-  set_wall_velocities(model, ws.flags, field);
+  set_wall_velocities(model, ws.flags, ws.inflow_velocity, field);
   // 6: the pressure iteration.
   const PressureSolveOptions options{.tolerance = model.def.tolerance,
                                      .relative = model.def.relative_tolerance,
@@ -117,14 +126,14 @@ void liquid_substep(const LiquidModel& model, const LiquidInputs& inputs, Real d
   stats.solve_seconds += seconds_since(solve_start);
   // 7: the Surface cells' velocities again, and what lies beyond them.
   set_surface_velocities(model, ws.flags, field);
-  set_wall_velocities(model, ws.flags, field);
+  set_wall_velocities(model, ws.flags, ws.inflow_velocity, field);
   extrapolate_velocities(model, ws.flags, kExtrapolationLayers, ws.known, ws.next_known, field);
   // 8: the surface.
   if (model.def.surface == SurfaceMethod::height_field) {
     advance_height_field(model, field, dt, state, ws);
   } else {
     stats.removed += advect_markers(model, field, dt, state.markers);
-    stats.dropped += release_markers(model, dt, state);
+    stats.dropped += release_markers(model, ws.inflow_velocity, dt, state);
   }
   state.time += dt;
   stats.substeps += 1;

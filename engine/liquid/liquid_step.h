@@ -24,8 +24,17 @@ struct LiquidStepStats {
 
 struct LiquidInputs {
   Vec3 gravity{0, 0, -9.81};
-  // Applied on the Surface cells beyond the liquid's own surface_pressure [Pa] (16.6.2).
+  // Applied on the Surface cells beyond the liquid's own surface_pressure [Pa] (16.6.2), at
+  // `time`, changing at surface_pressure_rate [Pa/s].
   Real surface_pressure = 0;
+  Real surface_pressure_rate = 0;
+  // Every inflow's velocity while a track drives it (16.6.1), at `time`, with its rate; else
+  // (inflows_driven false) each inflow keeps the scene's.
+  bool inflows_driven = false;
+  Vec3 inflow_velocity = Vec3::Zero();
+  Vec3 inflow_rate = Vec3::Zero();
+  // When the values above hold [s]: a substep takes them at its own start.
+  Real time = 0;
 };
 
 // The length of the next substep: the CFL fraction of the time to cross a cell at the fastest

@@ -18,6 +18,7 @@ void size_liquid_workspace(const LiquidModel& model, LiquidWorkspace& ws) {
   ws.target.assign(n, 0.0);
   for (auto& scale : ws.face_scale) scale.assign(n, 1.0);
   for (auto* v : {&ws.dp, &ws.r, &ws.z, &ws.s, &ws.q, &ws.precon}) v->assign(n, 0.0);
+  ws.inflow_velocity.assign(model.inflows.size(), Vec3::Zero());
   ws.height_next.assign(static_cast<std::size_t>(model.def.surface == SurfaceMethod::height_field
                                                      ? column_count(model)
                                                      : 0),

@@ -24,6 +24,7 @@ struct LiquidWorkspace {
   std::vector<Real> face_scale[3];           // s_f of each cell's + face along each axis
   std::vector<Real> dp, r, z, s, q, precon;  // conjugate gradients' vectors, MIC(0)'s factor
   std::vector<Real> height_next;             // the height field's update (16.12)
+  std::vector<Vec3> inflow_velocity;         // each inflow's this substep (LiquidInputs)
   MultigridHierarchy multigrid;
   // What bodies in the liquid read (liquid/liquid_probe.h), rebuilt from the state before each
   // of their substeps: the pressure continued past the liquid, the velocities.

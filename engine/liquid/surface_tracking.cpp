@@ -32,7 +32,8 @@ int advect_markers(const LiquidModel& model, const MacField& field, Real dt,
   return removed;
 }
 
-int release_markers(const LiquidModel& model, Real dt, LiquidState& state) {
+int release_markers(const LiquidModel& model, const std::vector<Vec3>& inflow_velocity, Real dt,
+                    LiquidState& state) {
   // The additive recurrence of the plastic number (Roberts' R3 sequence): evenly spread points
   // in a box, the same from any state that has released as many.
   constexpr Real kPlastic = 1.2207440845057265;
@@ -41,11 +42,19 @@ int release_markers(const LiquidModel& model, Real dt, LiquidState& state) {
   int dropped = 0;
   for (std::size_t s = 0; s < model.inflows.size(); ++s) {
     const InflowModel& inflow = model.inflows[s];
+    const Vec3& velocity = inflow_velocity[s];
+    // The main axis of the scene's velocity (of the velocity now, where the scene gives none).
+    int axis = 0;
+    (inflow.velocity.isZero() ? velocity : inflow.velocity).cwiseAbs().maxCoeff(&axis);
     Real rate = inflow.markers_per_second;
-    if (rate == 0) {
-      // The flux through the box's cross-section across its flow, at the marker density.
-      int axis = 0;
-      inflow.velocity.cwiseAbs().maxCoeff(&axis);
+    if (rate > 0) {
+      rate *=
+          inflow.velocity[axis] != 0 ? std::max(0.0, velocity[axis] / inflow.velocity[axis]) : 0.0;
+    } else {
+      // The flux through the box's cross-section across its flow, at the marker density; none
+      // while the inflow runs backwards (its cells drain the liquid then).
+      const Real sign =
+          std::copysign(1.0, inflow.velocity[axis] != 0 ? inflow.velocity[axis] : velocity[axis]);
       const Vec3 size = inflow.box.max - inflow.box.min;
       // Per cell and per box, their measure in the grid's dimensions (a 2D grid's thin axis out).
       Real cell = 1, box = 1;
@@ -54,7 +63,8 @@ int release_markers(const LiquidModel& model, Real dt, LiquidState& state) {
         cell *= g.h[a];
         box *= size[a];
       }
-      rate = model.markers_per_cell / cell * std::abs(inflow.velocity[axis]) * box / size[axis];
+      rate =
+          model.markers_per_cell / cell * std::max(0.0, sign * velocity[axis]) * box / size[axis];
     }
     Real& owed = state.released[s];
     owed += rate * dt;

@@ -15,9 +15,12 @@ int advect_markers(const LiquidModel& model, const MacField& field, Real dt,
                    std::vector<Vec3>& markers);
 
 // Each inflow's markers for dt at its rate (or, at rate 0, at the marker density times its
-// volume flux), placed by a low-discrepancy sequence over its cells. Never grows the markers past
-// their capacity; returns how many it could not release.
-int release_markers(const LiquidModel& model, Real dt, LiquidState& state);
+// volume flux), placed by a low-discrepancy sequence over its cells. A rate given scales with the
+// inflow's velocity now (inflow_velocity, one per inflow) over the scene's along its main axis;
+// an inflow sucking liquid out releases none. Never grows the markers past their capacity;
+// returns how many it could not release.
+int release_markers(const LiquidModel& model, const std::vector<Vec3>& inflow_velocity, Real dt,
+                    LiquidState& state);
 
 // (16.12): h += dt (w + (h_{i-1} - h_{i+1}) / (4 dx) (u_{i+1/2} + u_{i-1/2}) + the same along y),
 // with the velocities of the cell the surface crosses, held inside the domain.

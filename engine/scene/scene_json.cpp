@@ -59,6 +59,12 @@ constexpr auto kSceneFields = std::to_array<Field<Scene>>({
          .limit = kMaxSprings,
          .section = "spring",
          .description = "Point-to-target springs (sec. 6.4's mouse spring)."}),
+    // Before the tracks, which may drive a liquid's inflows and surface pressure.
+    list<&Scene::liquids, kLiquidSection>(
+        {.key = "liquids",
+         .limit = kMaxLiquids,
+         .section = "liquid",
+         .description = "Liquids on a staggered grid with a free surface (ch. 16)."}),
     list<&Scene::tracks, kTrackSection>({.key = "tracks",
                                          .limit = kMaxTracks,
                                          .section = "track",
@@ -73,11 +79,6 @@ constexpr auto kSceneFields = std::to_array<Field<Scene>>({
          .limit = kMaxFigures,
          .section = "figure",
          .description = "Articulated figures: trees of rigid segments (ch. 15)."}),
-    list<&Scene::liquids, kLiquidSection>(
-        {.key = "liquids",
-         .limit = kMaxLiquids,
-         .section = "liquid",
-         .description = "Liquids on a staggered grid with a free surface (ch. 16)."}),
 });
 
 // A scene simulates something: a deformable body, an articulated figure or a liquid.

@@ -124,12 +124,14 @@ std::optional<OwnerList> owner_list(const Scene& scene, std::string_view owner) 
   if (owner == "bodies") return OwnerList{"body", scene.bodies.size()};
   if (owner == "springs") return OwnerList{"spring", scene.springs.size()};
   if (owner == "obstacles") return OwnerList{"obstacle", scene.obstacles.size()};
+  if (owner == "liquids") return OwnerList{"liquid", scene.liquids.size()};
   return std::nullopt;
 }
 std::string item_name(const Scene& scene, std::string_view owner, int i) {
   const auto index = static_cast<std::size_t>(i);
   if (owner == "bodies") return scene.bodies[index].name;
   if (owner == "springs") return scene.springs[index].name;
+  if (owner == "liquids") return scene.liquids[index].name;
   return scene.obstacles[index].name;
 }
 

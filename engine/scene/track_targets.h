@@ -26,8 +26,10 @@ enum class TrackTarget {
   camera_position,
   camera_target,
   camera_fov,
-  obstacle_point,    // obstacles[i].point[k]: plane point, box centre, mesh origin
-  obstacle_rotation  // obstacles[i].rotation[k]: rotation vector applied before the orientation
+  obstacle_point,     // obstacles[i].point[k]: plane point, box centre, mesh origin
+  obstacle_rotation,  // obstacles[i].rotation[k]: rotation vector applied before the orientation
+  liquid_surface_pressure,  // liquids[i].surface_pressure (16.6.2)
+  liquid_inflow_velocity    // liquids[i].inflow_velocity[k]: every inflow of liquid i (16.6.1)
 };
 
 // TrackTargetFormat::components of a target indexed by the body's shape parameters.
@@ -35,7 +37,8 @@ inline constexpr int kShapeParameterComponents = -1;
 
 struct TrackTargetFormat {
   TrackTarget target = TrackTarget::gravity;
-  // The list of the scene whose item {i} is ("bodies", "springs", "obstacles"), "camera", or ""
+  // The list of the scene whose item {i} is ("bodies", "springs", "obstacles", "liquids"),
+  // "camera", or ""
   // for the scene itself.
   std::string_view owner{};
   std::string_view text{};        // as stored: "bodies[{i}].q_s0[{k}]"
@@ -51,7 +54,7 @@ struct TrackTargetFormat {
   std::string_view description{};
 };
 
-inline constexpr std::array<TrackTargetFormat, 9> kTrackTargets{{
+inline constexpr std::array<TrackTargetFormat, 11> kTrackTargets{{
     {.target = TrackTarget::body_rest_parameter,
      .owner = "bodies",
      .text = "bodies[{i}].q_s0[{k}]",
@@ -113,6 +116,19 @@ inline constexpr std::array<TrackTargetFormat, 9> kTrackTargets{{
      .component = "rotation component",
      .description = "Component k of a rotation vector r [rad], world frame, turning obstacle i "
                     "about its point: R(t) = exp(r(t)) R_orientation."},
+    {.target = TrackTarget::liquid_surface_pressure,
+     .owner = "liquids",
+     .text = "liquids[{i}].surface_pressure",
+     .pointer = "/liquids/{i}/surface_pressure",
+     .description = "The pressure applied on liquid i's free surface [Pa] (a surface pressure "
+                    "history, 16.6.2)."},
+    {.target = TrackTarget::liquid_inflow_velocity,
+     .owner = "liquids",
+     .text = "liquids[{i}].inflow_velocity[{k}]",
+     .components = 3,
+     .component = "velocity component",
+     .description = "Component k of the velocity of every inflow of liquid i [m/s] (time-dependent "
+                    "inflow, 16.6.1); markers are released in proportion to it."},
 }};
 
 // A stored target taken apart: which value, of which item, which component.

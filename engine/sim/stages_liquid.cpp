@@ -7,6 +7,7 @@
 #include "liquid/cell_labels.h"
 #include "liquid/liquid_probe.h"
 #include "sim/liquid_body_loads.h"
+#include "sim/tracks.h"
 
 namespace pbm::stages {
 
@@ -17,8 +18,19 @@ const draw::Material kLiquidSolidMaterial{{0.5f, 0.47f, 0.42f}, 0.9f};
 const draw::Vec3f kMarkerColor{0.25f, 0.55f, 0.95f};
 const draw::Vec3f kDomainColor{0.35f, 0.6f, 0.9f};
 
-LiquidInputs liquid_inputs(const Workspace& ws) {
-  return LiquidInputs{.gravity = ws.drive.gravity, .surface_pressure = 0};
+// What drives liquid l from `drive`, evaluated at time t: gravity, and the tracks of 16.6 with
+// their rates (LiquidInputs takes them at each of its substeps' times).
+LiquidInputs liquid_inputs(const Model& model, const Drive& drive, std::size_t l, Real t) {
+  LiquidInputs in{.gravity = drive.gravity, .time = t};
+  if (l < drive.liquid_surface_pressure.size()) {
+    // Beyond the scene's own value, which the liquid adds itself (exactly 0 without a track).
+    in.surface_pressure = drive.liquid_surface_pressure[l] - model.liquids[l].def.surface_pressure;
+    in.surface_pressure_rate = drive.liquid_surface_pressure_rate[l];
+    in.inflows_driven = drive.liquid_inflow_driven[l] != 0;
+    in.inflow_velocity = drive.liquid_inflow_velocity[l];
+    in.inflow_rate = drive.liquid_inflow_rate[l];
+  }
+  return in;
 }
 
 // The first entry of `values` that is NaN or infinite, or -1.
@@ -71,7 +83,9 @@ void size_liquids(const Model& model, Workspace& ws) {
 }
 
 void advance_liquids(const SubstepContext& c) {
-  const LiquidInputs inputs = liquid_inputs(c.ws);
+  // Tracks drive a liquid from its own time, where this advance starts (its substeps then follow
+  // the tracks' rates): one evaluation of the drive, only in scenes that have tracks.
+  const bool tracked = !c.model.tracks.empty();
   // A frame's last substep ends within rounding of the frame's time, to which advance_frame then
   // snaps the state's: the liquid goes there exactly.
   Real target = c.state.time;
@@ -88,6 +102,9 @@ void advance_liquids(const SubstepContext& c) {
     // Once the next substep of the bodies would take the liquid past its own limit: it then
     // advances in one substep of its own rather than two halves.
     if (!c.ws.substep_ends_frame && c.state.time - liquid.time + c.dt < liquid.next_step) continue;
+    if (tracked) evaluate_drive(c.model, c.inputs, liquid.time, c.ws.liquid_drive);
+    const LiquidInputs inputs =
+        liquid_inputs(c.model, tracked ? c.ws.liquid_drive : c.ws.drive, l, liquid.time);
     advance_liquid(c.model.liquids[l], inputs, target, liquid, c.ws.liquids[l],
                    c.ws.liquid_steps[l]);
   }

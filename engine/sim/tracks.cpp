@@ -107,6 +107,17 @@ void evaluate_drive(const Model& model, const Inputs& inputs, Real t, Drive& dri
     drive.camera_fov = model.scene.camera->fov;
   }
   place_obstacles(model, inputs, t, drive.obstacles);
+  const std::size_t n_liquids = model.liquids.size();
+  drive.liquid_surface_pressure.resize(n_liquids);
+  drive.liquid_surface_pressure_rate.assign(n_liquids, 0.0);
+  drive.liquid_inflow_velocity.resize(n_liquids);
+  drive.liquid_inflow_rate.assign(n_liquids, Vec3::Zero());
+  drive.liquid_inflow_driven.assign(n_liquids, 0);
+  for (std::size_t l = 0; l < n_liquids; ++l) {
+    drive.liquid_surface_pressure[l] = model.liquids[l].def.surface_pressure;
+    const std::vector<InflowModel>& inflows = model.liquids[l].inflows;
+    drive.liquid_inflow_velocity[l] = inflows.empty() ? Vec3::Zero() : inflows[0].velocity;
+  }
   for (int k = 0; k < static_cast<int>(model.tracks.size()); ++k) {
     const TrackModel& track = model.tracks[static_cast<std::size_t>(k)];
     if (track.target == TrackTarget::obstacle_point ||
@@ -135,6 +146,15 @@ void evaluate_drive(const Model& model, const Inputs& inputs, Real t, Drive& dri
         break;
       case TrackTarget::camera_fov:
         drive.camera_fov = value;
+        break;
+      case TrackTarget::liquid_surface_pressure:
+        drive.liquid_surface_pressure[track.object] = value;
+        drive.liquid_surface_pressure_rate[track.object] = track_rate(model, inputs, k, t);
+        break;
+      case TrackTarget::liquid_inflow_velocity:
+        drive.liquid_inflow_velocity[track.object][track.index] = value;
+        drive.liquid_inflow_rate[track.object][track.index] = track_rate(model, inputs, k, t);
+        drive.liquid_inflow_driven[track.object] = 1;
         break;
       case TrackTarget::obstacle_point:
       case TrackTarget::obstacle_rotation:

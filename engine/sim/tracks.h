@@ -2,6 +2,7 @@
 // the user's inputs of the moment (sim/inputs.h), and the values they drive.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "sim/inputs.h"
@@ -29,6 +30,12 @@ struct Drive {
   // The model's obstacles where their tracks put them at this time, with the velocity of their
   // material (sec. 5.2.1 against a moving obstacle); copies of Model::obstacles when none moves.
   std::vector<ObstacleModel> obstacles;
+  // Per liquid (16.6): the pressure on its free surface [Pa], and its inflows' velocity when a
+  // track drives it (inflow_driven 1: inflow_velocity holds for every inflow of the liquid), each
+  // with its rate, so a liquid stepping on its own clock takes them at its substeps' times.
+  std::vector<Real> liquid_surface_pressure, liquid_surface_pressure_rate;
+  std::vector<Vec3> liquid_inflow_velocity, liquid_inflow_rate;
+  std::vector<std::uint8_t> liquid_inflow_driven;
 };
 
 // The value of model.tracks[k] at time t and its rate: the track's keys, unless an input set it

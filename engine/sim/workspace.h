@@ -92,6 +92,7 @@ struct Workspace {
   // measurement (sim/stages_liquid.h).
   std::vector<LiquidWorkspace> liquids;
   std::vector<LiquidStepStats> liquid_steps;
+  Drive liquid_drive;  // the tracks at a liquid's own time (sim/stages_liquid.cpp)
   // Per body in a scene with liquids and bodies: the liquids' nodal forces at the last rate
   // evaluation [N] (sim/liquid_body_loads.h), whose power the guard counts.
   std::vector<std::vector<Vec3>> liquid_body_force;
