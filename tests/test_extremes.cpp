@@ -337,6 +337,26 @@ std::vector<Cell> cells() {
                  }
                  return s;
                }});
+  // Liquids (ch. 16): a 2D dam break (20 x 1 x 12 cells of 5 cm) at the ends of its knobs.
+  auto liquid = [](const std::string& knobs, const std::string& inflow = "",
+                   const std::string& resolution = "[20, 1, 12]") {
+    return [knobs, inflow, resolution] {
+      return parse_scene(R"({"name": "extreme", "solver": {"fps": 30}, "liquids": [{
+          "name": "water", "domain": {"min": [0, 0, 0], "max": [1, 0.1, 0.6]},
+          "resolution": )" + resolution +
+                             R"(,
+          "fluid": [{"box": {"min": [0, 0, 0], "max": [0.3, 0.1, 0.5]}}])" +
+                             inflow + knobs + "}]}",
+                         "extreme.json");
+    };
+  };
+  c.push_back({"liquid: dam break at CFL 1", liquid(R"(, "cfl": 1)")});
+  c.push_back({"liquid: inflow at 10 m/s",
+               liquid("", R"(, "inflows": [{"box": {"min": [0, 0, 0.5], "max": [0.05, 0.1, 0.55]},
+                           "velocity": [10, 0, 0]}])")});
+  c.push_back({"liquid: viscosity 0", liquid(R"(, "viscosity": 0)")});
+  c.push_back({"liquid: viscosity 1 m^2/s", liquid(R"(, "viscosity": 1)")});
+  c.push_back({"liquid: 512^3 cells, over the grid budget", liquid("", "", "[512, 512, 512]")});
   return c;
 }
 
