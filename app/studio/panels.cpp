@@ -565,6 +565,14 @@ void stats(Studio& studio) {
                 1e3 * f.subsystem_seconds[k]);
   }
   ImGui::Text("%d substeps, %d retries, %d rate evaluations", f.substeps, f.retries, f.evaluations);
+  // Each liquid (ch. 16) on its own CFL clock: what its substeps and solves cost this frame.
+  for (const LiquidFrameStats& l : f.liquids) {
+    ImGui::Text("liquid: %d substeps (cfl %.2f), %d solve iterations (max %d, %d unconverged)",
+                l.step.substeps, l.step.cfl, l.step.iterations, l.step.max_iterations,
+                l.step.unconverged);
+    ImGui::Text("  volume %.5g m^3, |div u| %.2g 1/s, %d markers, fastest %.3g m/s", l.volume,
+                l.step.divergence, l.markers, l.max_speed);
+  }
   // Levels of detail (sim/level_of_detail.h): what the "auto" bodies saved this frame.
   if (f.levels.dormant_bodies > 0 || f.levels.switches > 0) {
     ImGui::Text("%d auto bodies without displacements, %d switched (a switch off: %.3g m, %.3g J)",
