@@ -39,37 +39,31 @@ void build_liquid_probe(const LiquidModel& model, const LiquidState& state, cons
       known[k] = kKnown;
     }
   }
-  // Empty (and Inflow, Outflow) cells: continued upwards from the cell below, in the order of
-  // height so each reads a cell already set; with nothing below, a cell's depth below the
-  // surface is negative: one cell's worth of negative pressure, clamped to 0 when read.
-  const int n_up = g.n[v] + 2;
-  const int s_up = -down;
-  // Visit cells bottom-up: every cell of the lowest layer (along gravity) first.
-  auto layer_index = [&](int c) {
-    const int i = c % g.sy, j = (c % g.sz) / g.sy, kk = c / g.sz;
-    const int idx[3] = {i, j, kk};
-    return s_up > 0 ? idx[v] : n_up - 1 - idx[v];
-  };
+  // Empty (and Inflow, Outflow) cells: continued upwards from the cell below, layer by layer
+  // against gravity so each reads a cell already set (no sort, nothing allocated); with nothing
+  // below, a cell's depth below the surface is negative: one cell's worth of negative pressure,
+  // clamped to 0 when read.
+  const int layers = g.n[v] + 2;
+  const int a1 = (v + 1) % 3, a2 = (v + 2) % 3;
+  for (int t = 0; t < layers; ++t) {
+    int idx[3];
+    idx[v] = down < 0 ? t : layers - 1 - t;
+    for (idx[a2] = 0; idx[a2] < g.n[a2] + 2; ++idx[a2]) {
+      for (idx[a1] = 0; idx[a1] < g.n[a1] + 2; ++idx[a1]) {
+        const int c = g.index(idx[0], idx[1], idx[2]);
+        const auto k = static_cast<std::size_t>(c);
+        if (known[k] || ws.flags[k] == CellFlag::solid) continue;
+        const int below = c + down;
+        if (below >= 0 && below < g.size && known[static_cast<std::size_t>(below)]) {
+          p[k] = p[static_cast<std::size_t>(below)] - gv * hv;
+        } else {
+          p[k] = -gv * hv;
+        }
+        known[k] = kKnown;
+      }
+    }
+  }
   std::vector<int>& order = ws.probe_order;
-  order.clear();
-  for (int c = 0; c < g.size; ++c) {
-    if (!known[static_cast<std::size_t>(c)] &&
-        ws.flags[static_cast<std::size_t>(c)] != CellFlag::solid) {
-      order.push_back(c);
-    }
-  }
-  std::stable_sort(order.begin(), order.end(),
-                   [&](int a, int b) { return layer_index(a) < layer_index(b); });
-  for (int c : order) {
-    const int below = c + down;
-    const auto k = static_cast<std::size_t>(c);
-    if (below >= 0 && below < g.size && known[static_cast<std::size_t>(below)]) {
-      p[k] = p[static_cast<std::size_t>(below)] - gv * hv;
-    } else {
-      p[k] = -gv * hv;
-    }
-    known[k] = kKnown;
-  }
   // Solid cells (walls, boxes, the ghost layer): the mean of their set neighbours' values
   // continued to their centre, so the pressure a body feels beside a wall or on a floor is the
   // liquid's, not the solid's zero. A second pass reaches the cells with only solid neighbours

@@ -175,7 +175,7 @@ void measure_liquids(const Model& model, const Inputs& inputs, const State& stat
       // The push on the bodies at this state (their kinematics are measure_bodies'): the probe
       // labels the cells too.
       build_liquid_probe(m, s, ws.drive.gravity, w);
-      std::vector<Vec3> scratch;
+      std::vector<Vec3>& scratch = ws.liquid_measure_force;  // sized once: no allocation
       for (std::size_t b = 0; b < model.bodies.size(); ++b) {
         scratch.assign(static_cast<std::size_t>(model.bodies[b].n_nodes()), Vec3::Zero());
         const LiquidLoadTotals t = add_liquid_loads(m, w, model.bodies[b], ws.bodies[b], scratch);

@@ -96,6 +96,7 @@ struct Workspace {
   // Per body in a scene with liquids and bodies: the liquids' nodal forces at the last rate
   // evaluation [N] (sim/liquid_body_loads.h), whose power the guard counts.
   std::vector<std::vector<Vec3>> liquid_body_force;
+  std::vector<Vec3> liquid_measure_force;   // measure_liquids' scratch, one body's nodes
   BodyCollisionStats body_collision_stats;  // of the last substep
   SegmentBodyStats segment_body_stats;      // of the last substep
   int contacts = 0;  // touching nodes counted in the substep under way (-> State::contact_nodes)
