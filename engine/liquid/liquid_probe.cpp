@@ -119,15 +119,7 @@ Real probe_pressure(const LiquidModel& model, const LiquidWorkspace& ws, const V
     base[a] = b;
     frac[a] = s - b;
   }
-  Real value = 0;
-  for (int c = 0; c < 8; ++c) {
-    const int di = c & 1, dj = (c >> 1) & 1, dk = (c >> 2) & 1;
-    const Real w =
-        (di ? frac[0] : 1 - frac[0]) * (dj ? frac[1] : 1 - frac[1]) * (dk ? frac[2] : 1 - frac[2]);
-    if (w == 0) continue;
-    value += w * ws.probe_pressure[static_cast<std::size_t>(
-                     g.index(base[0] + di, base[1] + dj, base[2] + dk))];
-  }
+  const Real value = blend_trilinear(g, ws.probe_pressure, base, frac);
   return std::max(0.0, value);
 }
 

@@ -22,13 +22,19 @@ Real interpolate_component(const MacGrid& grid, const std::vector<Real>& u, int 
     base[a] = b;
     frac[a] = last == 0 ? 0.0 : g - b;
   }
+  return blend_trilinear(grid, u, base, frac);
+}
+
+Real blend_trilinear(const MacGrid& grid, const std::vector<Real>& values, const int (&base)[3],
+                     const Real (&frac)[3]) {
   Real value = 0;
   for (int c = 0; c < 8; ++c) {
     const int di = c & 1, dj = (c >> 1) & 1, dk = (c >> 2) & 1;
     const Real w =
         (di ? frac[0] : 1 - frac[0]) * (dj ? frac[1] : 1 - frac[1]) * (dk ? frac[2] : 1 - frac[2]);
     if (w == 0) continue;
-    value += w * u[static_cast<std::size_t>(grid.index(base[0] + di, base[1] + dj, base[2] + dk))];
+    value +=
+        w * values[static_cast<std::size_t>(grid.index(base[0] + di, base[1] + dj, base[2] + dk))];
   }
   return value;
 }

@@ -67,6 +67,11 @@ struct MacField {
   }
 };
 
+// The trilinear blend of `values` over the 8 samples from index base (per axis) to base + 1 at
+// fractions frac; a zero weight reads nothing (a 2D grid's thin axis).
+Real blend_trilinear(const MacGrid& grid, const std::vector<Real>& values, const int (&base)[3],
+                     const Real (&frac)[3]);
+
 // The velocity at a world point: each component interpolated trilinearly from the faces that
 // carry it (the area weighting of fig. 16.3, volume weighting in 3D). Points outside the domain
 // are clamped to it.
