@@ -191,6 +191,8 @@ std::string frame_stats_json(const World& world, const FrameStats& s, long frame
                          {"divergence", st.divergence},
                          {"markers_removed", st.removed},
                          {"markers_dropped", st.dropped},
+                         {"solid_cells", st.solid_cells},
+                         {"markers_pushed", st.pushed},
                          {"solve_seconds", st.solve_seconds}});
       if (!model.bodies.empty()) {
         const Vec3& f = ls.body_force;

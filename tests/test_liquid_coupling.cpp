@@ -1,9 +1,11 @@
-// Bodies in a liquid (sim/liquid_body_loads.h, 16.4): the pressure integrated over a body's
-// surface is Archimedes' rho g V_submerged at every depth and converges to the sphere's under
-// refinement of its mesh; a box of half the liquid's density floats with half its height
-// submerged, a denser one sinks to the floor; a sinking ball reaches the terminal velocity of its
-// quadratic drag; a light ball released under water rises, bobs and floats at the draft its
-// density gives, without the stability guard refusing the buoyancy's work; bit-identical runs.
+// Bodies in a liquid (sim/liquid_body_loads.h, 16.4), in a height-field tank (coupled one way:
+// the liquid does not see the bodies, the book's assumption; tests/test_liquid_two_way.cpp has
+// the bodies that displace it): the pressure integrated over a body's surface is Archimedes'
+// rho g V_submerged at every depth and converges to the sphere's under refinement of its mesh; a
+// box of half the liquid's density floats with half its height submerged, a denser one sinks to
+// the floor; a sinking ball reaches the terminal velocity of its quadratic drag; a light ball
+// released under water rises, bobs and floats at the draft its density gives, without the
+// stability guard refusing the buoyancy's work; bit-identical runs.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,6 +25,7 @@ struct Tank {
   int nx, ny, nz;
   Real depth;
   std::string surface = "height_field";
+  std::string coupling = "two_way";
 };
 
 std::string vec(const Vec3& v) {
@@ -53,8 +56,8 @@ std::string scene_json(const Tank& t, const std::string& body, Real drag, Real d
       "liquids": [{"name": "water", "domain": {"min": )" +
          vec(t.min) + R"(, "max": )" + vec(t.max) + R"(}, "resolution": [)" + std::to_string(t.nx) +
          ", " + std::to_string(t.ny) + ", " + std::to_string(t.nz) + R"(], "surface": ")" +
-         t.surface + R"(", "drag": )" + std::to_string(drag) + R"(, "fluid": [{"box": {"min": )" +
-         vec(t.min) + R"(, "max": )" + vec(top) + "}}]}]}";
+         t.surface + R"(", "coupling": ")" + t.coupling + R"(", "drag": )" + std::to_string(drag) +
+         R"(, "fluid": [{"box": {"min": )" + vec(t.min) + R"(, "max": )" + vec(top) + "}}]}]}";
 }
 
 // The volume the body's surface triangles enclose [m^3].
@@ -74,6 +77,8 @@ Real cap_volume(Real r, Real d) {
 }
 
 const Tank kTank{{0, 0, 0}, {1, 1, 0.8}, 16, 16, 16, 0.47};
+// The book's assumption (16.4): the bodies feel the liquid, the liquid does not see them.
+const Tank kOneWayTank{{0, 0, 0}, {1, 1, 0.8}, 16, 16, 16, 0.47, "height_field", "one_way"};
 
 TEST(LiquidCoupling, PressureOverTheSurfaceIsArchimedesAtEveryDepth) {
   const Real r = 0.1;
@@ -111,10 +116,11 @@ TEST(LiquidCoupling, AHalfDensityBoxFloatsHalfSubmergedADenserOneSinks) {
   for (Real density : {0.5, 2.0}) {
     // Its mass from its mesh's volume, found on a first build.
     const std::string probe_body = body_json(a0, aspect, 0.2, 1, Vec3(0.5, 0.5, 0.6), 16);
-    const Real v = mesh_volume(Simulation(parse_scene(scene_json(kTank, probe_body, 1), "t.json")));
+    const Real v =
+        mesh_volume(Simulation(parse_scene(scene_json(kOneWayTank, probe_body, 1), "t.json")));
     const std::string body =
         body_json(a0, aspect, 0.2, density * kRho * v, Vec3(0.5, 0.5, 0.6), 16);
-    Simulation sim(parse_scene(scene_json(kTank, body, 1), "tank.json"));
+    Simulation sim(parse_scene(scene_json(kOneWayTank, body, 1), "tank.json"));
     // Its height over the 2nd and the 5th second: the bobbing's range, and its mean.
     Real early_lo = 1e300, early_hi = -1e300, late_lo = 1e300, late_hi = -1e300, late_sum = 0;
     for (int f = 0; f < 150; ++f) {
@@ -138,7 +144,7 @@ TEST(LiquidCoupling, AHalfDensityBoxFloatsHalfSubmergedADenserOneSinks) {
       const Real mean = late_sum / 30;
       std::printf("bobbing: range %.4f m in the 2nd second, %.4f m in the 5th, mean %.4f m\n",
                   early_hi - early_lo, late_hi - late_lo, mean);
-      EXPECT_NEAR(mean, kTank.depth, 0.05 * 2 * half_height) << "density " << density;
+      EXPECT_NEAR(mean, kOneWayTank.depth, 0.05 * 2 * half_height) << "density " << density;
       EXPECT_LT(late_hi - late_lo, 0.5 * (early_hi - early_lo));
     } else {
       EXPECT_NEAR(z, half_height, 0.01) << "density " << density;  // on the floor

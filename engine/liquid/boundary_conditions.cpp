@@ -24,7 +24,9 @@ void for_each_face(const MacGrid& g, int a, Visit&& visit) {
 }  // namespace
 
 void set_wall_velocities(const LiquidModel& model, const std::vector<CellFlag>& flags,
-                         const std::vector<Vec3>& inflow_velocity, MacField& field) {
+                         const std::vector<Vec3>& inflow_velocity, const MovingSolids& moving,
+                         MacField& field) {
+  const bool any_moving = !moving.cells.empty();
   const MacGrid& g = model.grid;
   for (int a = 0; a < 3; ++a) {
     std::vector<Real>& u = field.u[a];
@@ -32,7 +34,18 @@ void set_wall_velocities(const LiquidModel& model, const std::vector<CellFlag>& 
       const CellFlag fl = flags[static_cast<std::size_t>(lo)];
       const CellFlag fh = flags[static_cast<std::size_t>(hi)];
       if (fl == CellFlag::solid || fh == CellFlag::solid) {
-        u[static_cast<std::size_t>(f)] = 0;
+        Real value = 0;
+        if (any_moving) {
+          const bool ml = moving.inside[static_cast<std::size_t>(lo)] != 0;
+          const bool mh = moving.inside[static_cast<std::size_t>(hi)] != 0;
+          if (ml && mh) {
+            value = 0.5 * (moving.velocity[static_cast<std::size_t>(lo)][a] +
+                           moving.velocity[static_cast<std::size_t>(hi)][a]);
+          } else if (ml || mh) {
+            value = moving.velocity[static_cast<std::size_t>(ml ? lo : hi)][a];
+          }
+        }
+        u[static_cast<std::size_t>(f)] = value;
       } else if (fl == CellFlag::inflow || fh == CellFlag::inflow) {
         const int c = fl == CellFlag::inflow ? lo : hi;
         const int inflow = model.inflow_of[static_cast<std::size_t>(c)];

@@ -8,14 +8,18 @@
 #include <vector>
 
 #include "liquid/liquid_model.h"
+#include "liquid/moving_solids.h"
 
 namespace pbm {
 
 // Faces of Solid cells carry no flow across; faces of Inflow cells their inflow's velocity (one
 // per inflow, as tracks set it, 16.6.1); the tangential velocity inside a wall mirrors the
-// liquid's beside it: w0 = -w1 no-slip, w0 = w1 free-slip.
+// liquid's beside it: w0 = -w1 no-slip, w0 = w1 free-slip. A face of a cell a moving solid covers
+// carries the solid's velocity (the mean of both sides' where both are covered): the liquid beside
+// it moves with it across the face, free to slip along it.
 void set_wall_velocities(const LiquidModel& model, const std::vector<CellFlag>& flags,
-                         const std::vector<Vec3>& inflow_velocity, MacField& field);
+                         const std::vector<Vec3>& inflow_velocity, const MovingSolids& moving,
+                         MacField& field);
 
 // The faces of Surface cells open to Empty cells (16.10 and the text after it): an open face
 // whose opposite face is closed takes the opposite's velocity (each dx/dx vanishes), and what

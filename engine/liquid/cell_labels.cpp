@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "liquid/moving_solids.h"
+
 namespace pbm {
 
 ColumnAxes column_axes(const LiquidModel& model) {
@@ -50,9 +52,12 @@ void label_from_height(const LiquidModel& model, const LiquidState& state,
 }  // namespace
 
 void label_cells(const LiquidModel& model, const LiquidState& state, std::vector<CellFlag>& flags,
-                 std::vector<Real>& fill, std::vector<int>& count) {
+                 std::vector<Real>& fill, std::vector<int>& count, const MovingSolids* moving) {
   const MacGrid& g = model.grid;
   flags = model.fixed;  // same size: no allocation
+  if (moving) {
+    for (int c : moving->cells) flags[static_cast<std::size_t>(c)] = CellFlag::solid;
+  }
   std::fill(fill.begin(), fill.end(), 0.0);
   std::fill(count.begin(), count.end(), 0);
   if (model.def.surface == SurfaceMethod::height_field) {

@@ -11,8 +11,12 @@
 
 namespace pbm {
 
+struct MovingSolids;
+
+// Cells moving solids cover (liquid/moving_solids.h) are Solid, whatever markers they hold.
 void label_cells(const LiquidModel& model, const LiquidState& state, std::vector<CellFlag>& flags,
-                 std::vector<Real>& fill, std::vector<int>& count);
+                 std::vector<Real>& fill, std::vector<int>& count,
+                 const MovingSolids* moving = nullptr);
 
 // The liquid's volume [m^3]: Full cells whole, Surface cells by their fill.
 Real liquid_volume(const LiquidModel& model, const std::vector<CellFlag>& flags,

@@ -22,6 +22,11 @@ enum class SurfaceMethod { markers, height_field };
 // The walls of the domain (16.2.2): no-slip (tangential velocity zero at the wall) or free-slip (a
 // plane of symmetry for the tangential motion).
 enum class WallKind { free_slip, no_slip };
+// How the liquid and the scene's solids act on each other: one_way, the book's assumption (16.4:
+// bodies feel the liquid's pressure and drag; the liquid sees only its own solid boxes), or
+// two_way, where bodies and obstacles are also Solid cells moving with them, so they displace the
+// liquid and make waves (liquid/moving_solids.h).
+enum class LiquidCoupling { one_way, two_way };
 
 // An axis-aligned box of the world [m].
 struct LiquidBoxDef {
@@ -57,6 +62,7 @@ struct LiquidDef {
   // a sphere, 1 for a cube face on.
   Real drag = 0.5;
   WallKind walls = WallKind::free_slip;
+  LiquidCoupling coupling = LiquidCoupling::two_way;
   Real surface_pressure = 0;  // applied on Surface cells above the atmosphere's [Pa]
   LiquidAdvection advection = LiquidAdvection::semi_lagrangian;
   PressureSolver solver = PressureSolver::mic_pcg;

@@ -137,6 +137,7 @@ LiquidModel build_liquid_model(const LiquidDef& def, const Vec3& gravity, const 
   }
   m.markers_per_cell = 1;
   for (int a = 0; a < 3; ++a) m.markers_per_cell *= a == m.thin_axis ? 1 : def.markers_per_axis;
+  m.two_way = def.coupling == LiquidCoupling::two_way && def.surface == SurfaceMethod::markers;
   m.vertical_axis = 2;
   if (gravity.squaredNorm() > 0) gravity.cwiseAbs().maxCoeff(&m.vertical_axis);
   find_mirror_faces(m);

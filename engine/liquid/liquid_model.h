@@ -29,6 +29,11 @@ struct LiquidModel {
   int thin_axis = -1;     // the axis of one cell in a 2D grid, -1 in 3D
   int vertical_axis = 2;  // the axis most against gravity (the height field's columns)
   int markers_per_cell = 8;
+  // Bodies and obstacles displace this liquid (liquid/moving_solids.h): coupling two_way with
+  // marker particles. A height field's one surface per column cannot pass around a body that
+  // pierces it (measured: a ball sinking through one lost 58% of the tank's volume), so a
+  // height-field liquid is coupled one way.
+  bool two_way = false;
   // Solid-solid faces next to the liquid's faces: their velocity is the mirror of their
   // neighbours' (16.2.2: w0 = -w1 no-slip, w0 = w1 free-slip). Per axis: the face and up to four
   // neighbours across the other axes (-1: none).

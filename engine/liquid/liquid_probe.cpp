@@ -10,13 +10,100 @@ namespace pbm {
 namespace {
 
 constexpr std::uint8_t kUnknown = 0, kKnown = 1;
+constexpr Real kNoSurface = -1e300;
+
+// Cell c's index along axis a (0..n + 1).
+int index_along(const MacGrid& g, int a, int c) {
+  return (c / g.stride(a)) % (g.n[a] + 2);
+}
+
+// ws.probe_eta of every liquid cell: where the free surface over it lies along the vertical axis
+// [m]. Down each column along gravity, a Surface cell puts the surface at its fill and the
+// liquid below it keeps that surface; an Empty cell (air, also a pocket under liquid) or a solid
+// interrupts it: the liquid under a body or a ledge takes its horizontal neighbours' surface,
+// spreading inwards pass by pass, so that a hump of liquid riding on a body presses it down
+// without also pressing it up.
+void set_free_surface_heights(const LiquidModel& model, const Vec3& gravity, LiquidWorkspace& ws) {
+  const MacGrid& g = model.grid;
+  const ColumnAxes axes = column_axes(model);
+  const int v = axes.v;
+  const bool up_is_plus = gravity[v] <= 0;  // the surface lies towards +v over the liquid
+  const int down = up_is_plus ? -g.stride(v) : g.stride(v);
+  const Real hv = g.h[v];
+  std::vector<Real>& eta = ws.probe_eta;
+  eta.assign(static_cast<std::size_t>(g.size), kNoSurface);
+  int ijk[3];
+  for (int i1 = 1; i1 <= g.n[axes.h1]; ++i1) {
+    for (int i0 = 1; i0 <= g.n[axes.h0]; ++i0) {
+      ijk[axes.h0] = i0;
+      ijk[axes.h1] = i1;
+      ijk[v] = up_is_plus ? g.n[v] : 1;
+      Real surface = kNoSurface;
+      int c = g.index(ijk[0], ijk[1], ijk[2]);
+      for (int t = 0; t < g.n[v]; ++t, c += down) {
+        const auto k = static_cast<std::size_t>(c);
+        const CellFlag f = ws.flags[k];
+        if (f == CellFlag::empty || f == CellFlag::solid) {
+          surface = kNoSurface;
+        } else if (f == CellFlag::surface) {
+          const int iv = index_along(g, v, c);
+          // The cell's face towards gravity, and the fill above it.
+          const Real floor = g.origin[v] + (up_is_plus ? iv - 1 : iv) * hv;
+          surface = floor + (up_is_plus ? 1 : -1) * ws.fill[k] * hv;
+          eta[k] = surface;
+        } else if (f == CellFlag::full) {
+          eta[k] = surface;
+        }
+      }
+    }
+  }
+  // Under solids: from the neighbours across the column axes, a pass at a time (each reads only
+  // the last pass's values: the same result in any order), over the cells still without one.
+  std::vector<int>& pending = ws.probe_order;
+  std::vector<Real>& next = ws.probe_next_eta;
+  pending.clear();
+  for (int c = 0; c < g.size; ++c) {
+    const auto k = static_cast<std::size_t>(c);
+    if (ws.flags[k] == CellFlag::full && eta[k] == kNoSurface) pending.push_back(c);
+  }
+  const int horizontal[2] = {axes.h0, axes.h1};
+  while (!pending.empty()) {
+    next.assign(pending.size(), kNoSurface);
+    for (std::size_t m = 0; m < pending.size(); ++m) {
+      const int c = pending[m];
+      Real sum = 0;
+      int n = 0;
+      for (int a : horizontal) {
+        if (a == model.thin_axis) continue;
+        for (int side = -1; side <= 1; side += 2) {
+          const auto nb = static_cast<std::size_t>(c + side * g.stride(a));
+          if (is_liquid(ws.flags[nb]) && eta[nb] != kNoSurface) {
+            sum += eta[nb];
+            ++n;
+          }
+        }
+      }
+      if (n > 0) next[m] = sum / n;
+    }
+    std::size_t kept = 0;
+    for (std::size_t m = 0; m < pending.size(); ++m) {
+      if (next[m] != kNoSurface) {
+        eta[static_cast<std::size_t>(pending[m])] = next[m];
+      } else {
+        pending[kept++] = pending[m];
+      }
+    }
+    if (kept == pending.size()) break;  // nothing reachable is left (a full tank)
+    pending.resize(kept);
+  }
+}
 
 }  // namespace
 
 void build_liquid_probe(const LiquidModel& model, const LiquidState& state, const Vec3& gravity,
                         LiquidWorkspace& ws) {
   const MacGrid& g = model.grid;
-  label_cells(model, state, ws.flags, ws.fill, ws.count);
+  label_cells(model, state, ws.flags, ws.fill, ws.count, &ws.moving);
   std::vector<Real>& p = ws.probe_pressure;
   std::vector<std::uint8_t>& known = ws.probe_known;
   p.assign(static_cast<std::size_t>(g.size), 0.0);
@@ -29,10 +116,20 @@ void build_liquid_probe(const LiquidModel& model, const LiquidState& state, cons
   const Real applied = model.def.surface_pressure / model.def.density;
   // Full cells: the solve's pressure. Surface cells: zero (plus the applied pressure) at the
   // surface, which the fill puts (fill - 1/2) h above the centre of a cell filled from below.
+  const bool two_way = model.two_way;
+  if (two_way) set_free_surface_heights(model, gravity, ws);
   for (int c = 0; c < g.size; ++c) {
     const auto k = static_cast<std::size_t>(c);
     if (ws.flags[k] == CellFlag::full) {
-      p[k] = state.pressure[k];
+      // Two-way: the hydrostatic pressure below the free surface over the cell (see the header);
+      // the solve's where no surface is over it (a full tank).
+      const Real eta = two_way ? ws.probe_eta[k] : kNoSurface;
+      if (eta != kNoSurface) {
+        const Real z = g.origin[v] + (index_along(g, v, c) - 0.5) * hv;
+        p[k] = applied + gv * (gravity[v] <= 0 ? eta - z : z - eta);
+      } else {
+        p[k] = state.pressure[k];
+      }
       known[k] = kKnown;
     } else if (ws.flags[k] == CellFlag::surface) {
       p[k] = applied + gv * (ws.fill[k] - 0.5) * hv;

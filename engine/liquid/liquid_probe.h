@@ -5,6 +5,13 @@
 // cells, so that interpolated between centres it is linear in depth and crosses zero at the
 // surface. A body's pressure integral then gives Archimedes' force for a surface anywhere inside
 // a cell, not at its centre (tests/test_liquid_coupling.cpp).
+//
+// Under two-way coupling (liquid/moving_solids.h) the liquid's cells take the hydrostatic
+// pressure below the free surface over them (waves included) instead of the solve's: beside a
+// body that moves the liquid, the solve's pressure holds the body's own added mass (the liquid it
+// must accelerate), and fed back one substep late it makes a body lighter than about half the
+// liquid unstable (measured: a ball of 0.2 rho released under water was flung sideways at 68 N).
+// The flow's push on such a body is its drag against the liquid's velocity.
 #pragma once
 
 #include "liquid/liquid_state.h"
@@ -13,7 +20,8 @@
 namespace pbm {
 
 // Rebuilds ws.probe_pressure and ws.probe_velocity from the state (labels it, into ws.flags,
-// ws.fill and ws.count); gravity as the liquid steps under it.
+// ws.fill and ws.count, with the cells ws.moving covers Solid); gravity as the liquid steps under
+// it.
 void build_liquid_probe(const LiquidModel& model, const LiquidState& state, const Vec3& gravity,
                         LiquidWorkspace& ws);
 

@@ -95,11 +95,23 @@ void liquid_substep(const LiquidModel& model, const LiquidInputs& inputs, Real d
                                 ? Vec3(inputs.inflow_velocity + inputs.inflow_rate * since)
                                 : model.inflows[s].velocity;
   }
+  // The solids where they are now, and the liquid they swept pushed ahead of them.
+  clear_moving_solids(ws.moving);
+  for (const SolidCell& cell : inputs.obstacle_cells) {
+    mark_solid_cell(model, cell.cell, cell.velocity, ws.moving);
+  }
+  for (const SolidSurface& surface : inputs.surfaces) {
+    voxelize_surface(model, surface, state.time - inputs.surfaces_time, ws.moving);
+  }
+  if (model.def.surface == SurfaceMethod::markers) {
+    stats.pushed += push_markers_out(model, ws.moving, state.markers);
+  }
+  stats.solid_cells = static_cast<int>(ws.moving.cells.size());
   // 3-4: labels, boundary pressures and velocities.
-  label_cells(model, state, ws.flags, ws.fill, ws.count);
+  label_cells(model, state, ws.flags, ws.fill, ws.count, &ws.moving);
   set_boundary_pressure(model, ws.flags, applied, state.pressure);
   MacField& field = state.velocity;
-  set_wall_velocities(model, ws.flags, ws.inflow_velocity, field);
+  set_wall_velocities(model, ws.flags, ws.inflow_velocity, ws.moving, field);
   set_surface_velocities(model, ws.flags, field);
   extrapolate_velocities(model, ws.flags, kExtrapolationLayers, ws.known, ws.next_known, field);
   for (int a = 0; a < 3; ++a) ws.previous.u[a] = field.u[a];
@@ -115,7 +127,7 @@ void liquid_substep(const LiquidModel& model, const LiquidInputs& inputs, Real d
                                 .gravity = inputs.gravity,
                                 .dt = dt},
                   field);
-  set_wall_velocities(model, ws.flags, ws.inflow_velocity, field);
+  set_wall_velocities(model, ws.flags, ws.inflow_velocity, ws.moving, field);
   // 6: the pressure iteration.
   const PressureSolveOptions options{.tolerance = model.def.tolerance,
                                      .relative = model.def.relative_tolerance,
@@ -126,13 +138,13 @@ void liquid_substep(const LiquidModel& model, const LiquidInputs& inputs, Real d
   stats.solve_seconds += seconds_since(solve_start);
   // 7: the Surface cells' velocities again, and what lies beyond them.
   set_surface_velocities(model, ws.flags, field);
-  set_wall_velocities(model, ws.flags, ws.inflow_velocity, field);
+  set_wall_velocities(model, ws.flags, ws.inflow_velocity, ws.moving, field);
   extrapolate_velocities(model, ws.flags, kExtrapolationLayers, ws.known, ws.next_known, field);
   // 8: the surface.
   if (model.def.surface == SurfaceMethod::height_field) {
     advance_height_field(model, field, dt, state, ws);
   } else {
-    stats.removed += advect_markers(model, field, dt, state.markers);
+    stats.removed += advect_markers(model, field, dt, state.markers, &ws.moving);
     stats.dropped += release_markers(model, ws.inflow_velocity, dt, state);
   }
   state.time += dt;

@@ -4,6 +4,7 @@
 
 #include "liquid/liquid_state.h"
 #include "liquid/liquid_workspace.h"
+#include "liquid/moving_solids.h"
 #include "liquid/pressure_system.h"
 
 namespace pbm {
@@ -19,6 +20,8 @@ struct LiquidStepStats {
   Real dt_min = 0, dt_max = 0;  // the substeps' lengths [s]
   int removed = 0;              // markers that left by an outflow
   int dropped = 0;              // markers an inflow could not release (the capacity)
+  int solid_cells = 0;          // cells moving solids covered at the last substep
+  int pushed = 0;               // markers pushed out of them (liquid/moving_solids.h)
   double solve_seconds = 0;     // wall time in the pressure solves (a cost, never a result)
 };
 
@@ -35,6 +38,11 @@ struct LiquidInputs {
   Vec3 inflow_rate = Vec3::Zero();
   // When the values above hold [s]: a substep takes them at its own start.
   Real time = 0;
+  // Two-way coupling (liquid/moving_solids.h): the cells the scene's obstacles cover, and the
+  // bodies' surfaces as they are at surfaces_time; each substep voxelizes them at its own start.
+  std::span<const SolidCell> obstacle_cells = {};
+  std::span<const SolidSurface> surfaces = {};
+  Real surfaces_time = 0;
 };
 
 // The length of the next substep: the CFL fraction of the time to cross a cell at the fastest

@@ -23,6 +23,7 @@ void size_liquid_workspace(const LiquidModel& model, LiquidWorkspace& ws) {
                                                      ? column_count(model)
                                                      : 0),
                         0.0);
+  size_moving_solids(model, ws.moving);
   if (model.def.solver == PressureSolver::mgpcg) size_multigrid(model.grid, ws.multigrid);
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "liquid/liquid_model.h"
+#include "liquid/moving_solids.h"
 #include "liquid/pressure_multigrid.h"
 
 namespace pbm {
@@ -26,11 +27,15 @@ struct LiquidWorkspace {
   std::vector<Real> height_next;             // the height field's update (16.12)
   std::vector<Vec3> inflow_velocity;         // each inflow's this substep (LiquidInputs)
   MultigridHierarchy multigrid;
+  // The cells bodies and obstacles cover (two-way coupling), set before each substep and each
+  // probe from where they are then.
+  MovingSolids moving;
   // What bodies in the liquid read (liquid/liquid_probe.h), rebuilt from the state before each
   // of their substeps: the pressure continued past the liquid, the velocities.
   std::vector<Real> probe_pressure;
   std::vector<std::uint8_t> probe_known;
   std::vector<int> probe_order;
+  std::vector<Real> probe_eta, probe_next_eta;  // the free surface over each liquid cell [m]
   MacField probe_velocity;
 };
 

@@ -8,7 +8,7 @@
 namespace pbm {
 
 int advect_markers(const LiquidModel& model, const MacField& field, Real dt,
-                   std::vector<Vec3>& markers) {
+                   std::vector<Vec3>& markers, const MovingSolids* moving) {
   const MacGrid& g = model.grid;
   std::size_t kept = 0;
   for (std::size_t m = 0; m < markers.size(); ++m) {
@@ -21,9 +21,10 @@ int advect_markers(const LiquidModel& model, const MacField& field, Real dt,
     if (!g.interior(c.x(), c.y(), c.z())) {
       next = x;
     } else {
-      const CellFlag f = model.fixed[static_cast<std::size_t>(g.index(c.x(), c.y(), c.z()))];
+      const auto k = static_cast<std::size_t>(g.index(c.x(), c.y(), c.z()));
+      const CellFlag f = model.fixed[k];
       if (f == CellFlag::outflow) continue;  // removed
-      if (f == CellFlag::solid) next = x;
+      if (f == CellFlag::solid || (moving && moving->inside[k])) next = x;
     }
     markers[kept++] = next;
   }

@@ -129,6 +129,12 @@ constexpr auto kLiquidFields = std::to_array<Field<LiquidDef>>({
         {.key = "walls",
          .description = "The domain's and the solids' walls: free_slip (a plane of symmetry) or "
                         "no_slip (tangential velocity zero), 16.2.2."}),
+    choice<&LiquidDef::coupling, kLiquidCouplingNames>(
+        {.key = "coupling",
+         .description = "two_way: the scene's bodies and obstacles are Solid cells moving with "
+                        "them, displacing the liquid (markers only: a height field is coupled one "
+                        "way); one_way: the book's 16.4, bodies feel the liquid but do not move "
+                        "it."}),
     value<&LiquidDef::surface_pressure>(
         {.key = "surface_pressure",
          .unit = "Pa",

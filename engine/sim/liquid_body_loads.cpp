@@ -35,6 +35,24 @@ LiquidLoadTotals add_liquid_loads(const LiquidModel& liquid, const LiquidWorkspa
   if (bw.x.empty() || !overlaps_domain(liquid, bw)) return totals;
   const Real rho = liquid.def.density;
   const Real cd = liquid.def.drag;
+  // Where the body moves the liquid too (two-way), the liquid beside it moves with it, and the
+  // drag's C_d is defined against the stream the body meets: its relative velocity is the
+  // liquid's as far out along each face's normal as the body is large (the bounding sphere's
+  // radius, at least a cell and a half: a sphere's own disturbance there is an eighth of its
+  // speed), a sub-grid closure for the wake the grid cannot resolve
+  // (tests/test_liquid_two_way.cpp).
+  Real offset = 0;
+  if (liquid.two_way) {
+    Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+    for (const Vec3& x : bw.x) {
+      lo = lo.cwiseMin(x);
+      hi = hi.cwiseMax(x);
+    }
+    offset = 0.5 * (hi - lo).norm();
+    for (int k = 0; k < 3; ++k) {
+      if (k != liquid.thin_axis) offset = std::max(offset, 1.5 * liquid.grid.h[k]);
+    }
+  }
   for (const std::array<int, 3>& t : body.tessellation.triangles) {
     const Vec3& x0 = bw.x[t[0]];
     const Vec3& x1 = bw.x[t[1]];
@@ -57,7 +75,7 @@ LiquidLoadTotals add_liquid_loads(const LiquidModel& liquid, const LiquidWorkspa
     const Real wet_fraction = wet / 3.0;
     totals.wetted_area += wet_fraction * a;
     if (cd > 0 && a > 0) {
-      const Vec3 centroid = (x0 + x1 + x2) / 3;
+      const Vec3 centroid = (x0 + x1 + x2) / 3 + offset / a * area;
       const Vec3 relative = (bw.x_dot[t[0]] + bw.x_dot[t[1]] + bw.x_dot[t[2]]) / 3 -
                             probe_velocity(liquid, lw, centroid);
       const Real speed = relative.norm();

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "collide/obstacle.h"
+#include "deform/body_dynamics.h"
 #include "liquid/cell_labels.h"
 #include "liquid/liquid_probe.h"
 #include "sim/liquid_body_loads.h"
@@ -68,6 +70,65 @@ void add_box_edges(const Vec3& lo, const Vec3& hi, const draw::Vec3f& color, dra
   }
 }
 
+bool two_way(const LiquidModel& liquid) {
+  return liquid.two_way;
+}
+
+bool any_two_way(const Model& model) {
+  return std::any_of(model.liquids.begin(), model.liquids.end(), two_way);
+}
+
+// Every body's surface at the state's time, into ws.liquid_surfaces.
+void capture_body_surfaces(const Model& model, const State& state, Workspace& ws) {
+  ws.liquid_surfaces.clear();  // reserved for every body: no allocation
+  for (std::size_t b = 0; b < model.bodies.size(); ++b) {
+    const BodyModel& body = model.bodies[b];
+    BodyWorkspace& k = ws.liquid_kinematics[b];
+    k.q_s_rest = ws.drive.q_s0[b];
+    compute_body_kinematics(body, body_q(body, state.q), body_v(body, state.v), k, false);
+    ws.liquid_surfaces.push_back({k.x, k.x_dot, body.tessellation.triangles});
+  }
+}
+
+// The interior cells of liquid m whose centres lie inside an obstacle placed as `obstacles` are
+// (a plane's half-space, a box, a mesh), with the obstacle's velocity there.
+void collect_obstacle_cells(const LiquidModel& m, const std::vector<ObstacleModel>& obstacles,
+                            std::vector<SolidCell>& out) {
+  out.clear();
+  if (obstacles.empty()) return;
+  const MacGrid& g = m.grid;
+  for (int k = 1; k <= g.n.z(); ++k) {
+    for (int j = 1; j <= g.n.y(); ++j) {
+      for (int i = 1; i <= g.n.x(); ++i) {
+        const int c = g.index(i, j, k);
+        if (m.fixed[static_cast<std::size_t>(c)] != CellFlag::empty) continue;
+        const Vec3 x = g.centre(i, j, k);
+        for (const ObstacleModel& o : obstacles) {
+          Vec3 normal;
+          if (signed_distance(o, x, normal) < 0) {
+            out.push_back({c, o.velocity_at(x)});
+            break;
+          }
+        }
+      }
+    }
+  }
+}
+
+// Liquid l's moving solids where the bodies (ws.liquid_surfaces) and obstacles are now: what its
+// probe and its measurement see between its substeps.
+void place_liquid_solids(const Model& model, std::size_t l, Workspace& ws) {
+  MovingSolids& moving = ws.liquids[l].moving;
+  clear_moving_solids(moving);
+  if (!two_way(model.liquids[l])) return;
+  const LiquidModel& m = model.liquids[l];
+  collect_obstacle_cells(m, ws.drive.obstacles, ws.liquid_obstacle_cells);
+  for (const SolidCell& cell : ws.liquid_obstacle_cells) {
+    mark_solid_cell(m, cell.cell, cell.velocity, moving);
+  }
+  for (const SolidSurface& surface : ws.liquid_surfaces) voxelize_surface(m, surface, 0, moving);
+}
+
 }  // namespace
 
 bool liquids_present(const Model& model) {
@@ -80,6 +141,16 @@ void size_liquids(const Model& model, Workspace& ws) {
     size_liquid_workspace(model.liquids[l], ws.liquids[l]);
   }
   ws.liquid_steps.assign(model.liquids.size(), LiquidStepStats{});
+  if (any_two_way(model)) {
+    ws.liquid_kinematics = ws.bodies;  // sized as the bodies' own
+    ws.liquid_surfaces.reserve(model.bodies.size());
+    ws.liquid_obstacle_cells.reserve(
+        static_cast<std::size_t>(std::max_element(model.liquids.begin(), model.liquids.end(),
+                                                  [](const LiquidModel& a, const LiquidModel& b) {
+                                                    return a.grid.size < b.grid.size;
+                                                  })
+                                     ->grid.size));
+  }
 }
 
 void advance_liquids(const SubstepContext& c) {
@@ -94,6 +165,7 @@ void advance_liquids(const SubstepContext& c) {
     const Real frame_time = std::round(c.state.time * fps) / fps;
     if (std::abs(frame_time - target) < 1e-6 / fps) target = frame_time;
   }
+  bool captured = false;
   for (std::size_t l = 0; l < c.model.liquids.size(); ++l) {
     LiquidState& liquid = c.state.liquids[l];
     if (liquid.overrun) continue;  // the frame fails (describe_liquid_failure)
@@ -103,8 +175,18 @@ void advance_liquids(const SubstepContext& c) {
     // advances in one substep of its own rather than two halves.
     if (!c.ws.substep_ends_frame && c.state.time - liquid.time + c.dt < liquid.next_step) continue;
     if (tracked) evaluate_drive(c.model, c.inputs, liquid.time, c.ws.liquid_drive);
-    const LiquidInputs inputs =
+    LiquidInputs inputs =
         liquid_inputs(c.model, tracked ? c.ws.liquid_drive : c.ws.drive, l, liquid.time);
+    if (two_way(c.model.liquids[l])) {
+      // The bodies at the end of this substep of theirs; each substep of the liquid moves them
+      // back to its own time along their velocities.
+      if (!captured) capture_body_surfaces(c.model, c.state, c.ws);
+      captured = true;
+      collect_obstacle_cells(c.model.liquids[l], c.ws.drive.obstacles, c.ws.liquid_obstacle_cells);
+      inputs.obstacle_cells = c.ws.liquid_obstacle_cells;
+      inputs.surfaces = c.ws.liquid_surfaces;
+      inputs.surfaces_time = c.state.time;
+    }
     advance_liquid(c.model.liquids[l], inputs, target, liquid, c.ws.liquids[l],
                    c.ws.liquid_steps[l]);
   }
@@ -125,8 +207,10 @@ void size_liquid_bodies(const Model& model, Workspace& ws) {
 void liquid_probe_start(const SubstepContext& c) {
   // Rebuilt every substep from the State alone, never kept from an earlier one: a retry, a seek
   // or the adaptive integrator's rejection restores the State, and the bodies must feel the
-  // liquid it holds (docs/architecture.md, "Determinism").
+  // liquid it holds (docs/architecture.md, "Determinism"). The solids where they are now.
+  if (any_two_way(c.model)) capture_body_surfaces(c.model, c.state, c.ws);
   for (std::size_t l = 0; l < c.model.liquids.size(); ++l) {
+    place_liquid_solids(c.model, l, c.ws);
     build_liquid_probe(c.model.liquids[l], c.state.liquids[l], c.ws.drive.gravity, c.ws.liquids[l]);
   }
 }
@@ -159,6 +243,7 @@ void measure_liquids(const Model& model, const Inputs& inputs, const State& stat
                      FrameStats& stats) {
   (void)inputs;
   stats.liquids.resize(model.liquids.size());
+  if (any_two_way(model)) capture_body_surfaces(model, state, ws);
   for (std::size_t l = 0; l < model.liquids.size(); ++l) {
     const LiquidModel& m = model.liquids[l];
     const LiquidState& s = state.liquids[l];
@@ -166,11 +251,11 @@ void measure_liquids(const Model& model, const Inputs& inputs, const State& stat
     LiquidFrameStats& out = stats.liquids[l];
     out.body_force.setZero();
     out.wetted_area = 0;
-    // What the substeps since the last measurement cost; the next measurement starts afresh.
+    // What the frame's substeps cost (advance_frame starts each attempt afresh).
     out.step = ws.liquid_steps[l];
-    ws.liquid_steps[l] = LiquidStepStats{};
+    place_liquid_solids(model, l, ws);
     if (model.bodies.empty()) {
-      label_cells(m, s, w.flags, w.fill, w.count);
+      label_cells(m, s, w.flags, w.fill, w.count, &w.moving);
     } else {
       // The push on the bodies at this state (their kinematics are measure_bodies'): the probe
       // labels the cells too.
@@ -202,6 +287,22 @@ void measure_liquids(const Model& model, const Inputs& inputs, const State& stat
     }
     out.kinetic = 0.5 * m.def.density * g.cell_volume() * sum;
     out.max_speed = fastest;
+  }
+}
+
+void remove_covered_liquid(const Model& model, State& state, Workspace& ws) {
+  if (!any_two_way(model)) return;
+  capture_body_surfaces(model, state, ws);
+  for (std::size_t l = 0; l < model.liquids.size(); ++l) {
+    place_liquid_solids(model, l, ws);
+    const MovingSolids& moving = ws.liquids[l].moving;
+    const MacGrid& g = model.liquids[l].grid;
+    std::vector<Vec3>& markers = state.liquids[l].markers;
+    std::erase_if(markers, [&](const Vec3& x) {
+      const Eigen::Vector3i c = g.cell_of(x);
+      return g.interior(c.x(), c.y(), c.z()) &&
+             moving.inside[static_cast<std::size_t>(g.index(c.x(), c.y(), c.z()))];
+    });
   }
 }
 

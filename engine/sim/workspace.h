@@ -96,7 +96,13 @@ struct Workspace {
   // Per body in a scene with liquids and bodies: the liquids' nodal forces at the last rate
   // evaluation [N] (sim/liquid_body_loads.h), whose power the guard counts.
   std::vector<std::vector<Vec3>> liquid_body_force;
-  std::vector<Vec3> liquid_measure_force;   // measure_liquids' scratch, one body's nodes
+  std::vector<Vec3> liquid_measure_force;  // measure_liquids' scratch, one body's nodes
+  // Two-way coupling (liquid/moving_solids.h), in scenes with liquids: each body's surface as
+  // the liquids see it (kinematics of its own, computed from the State, so the bodies' stages'
+  // are never disturbed), and one liquid's obstacle cells at a time.
+  std::vector<BodyWorkspace> liquid_kinematics;
+  std::vector<SolidSurface> liquid_surfaces;
+  std::vector<SolidCell> liquid_obstacle_cells;
   BodyCollisionStats body_collision_stats;  // of the last substep
   SegmentBodyStats segment_body_stats;      // of the last substep
   int contacts = 0;  // touching nodes counted in the substep under way (-> State::contact_nodes)

@@ -298,6 +298,8 @@ FrameResult advance_frame(const World& world, const Inputs& inputs, State& state
   const bool adaptive = adaptive_steps(model);
   int rejected = 0;  // over every attempt: the work the estimate threw away
   for (int attempt = 0; attempt <= model.solver.max_retries; ++attempt) {
+    // What the liquids' substeps cost, this attempt's (every measurement of the frame reads it).
+    for (LiquidStepStats& steps : ws.liquid_steps) steps = LiquidStepStats{};
     const int substeps = base_substeps << attempt;
     const Real h = frame_dt / substeps;
     bool ok = true;
