@@ -71,6 +71,19 @@ Real mean_surface_height(const Simulation& sim) {
   return sum / (g.n.x() * g.n.y());
 }
 
+// Advances n frames, each one succeeding; the largest relative change of liquid 0's volume from
+// volume0 over them.
+Real run_frames(Simulation& sim, int n, Real volume0) {
+  Real worst = 0;
+  for (int f = 0; f < n; ++f) {
+    const FrameResult res = advance_frame(sim);
+    EXPECT_TRUE(res.ok) << "frame " << f << ": " << res.message;
+    if (!res.ok) return 1e300;
+    worst = std::max(worst, std::abs(sim.stats.liquids.at(0).volume / volume0 - 1));
+  }
+  return worst;
+}
+
 // A box lowered slowly into a 2D tank by a track, until it is wholly under water: the level rises
 // by its area over the tank's width. Its final faces lie on the cells' faces, so the cells it
 // covers are exactly its area.
@@ -92,12 +105,7 @@ TEST(LiquidTwoWay, ALoweredBoxRaisesTheWaterByItsVolumeOverTheTanksArea) {
   Simulation sim(parse_scene(lowered_box_scene("two_way"), "lowered.json"));
   const Real level0 = mean_surface_height(sim);
   const Real volume0 = sim.stats.liquids.at(0).volume;
-  Real worst_volume = 0;
-  for (int f = 0; f < 90; ++f) {
-    const FrameResult res = advance_frame(sim);
-    ASSERT_TRUE(res.ok) << "frame " << f << ": " << res.message;
-    worst_volume = std::max(worst_volume, std::abs(sim.stats.liquids.at(0).volume / volume0 - 1));
-  }
+  const Real worst_volume = run_frames(sim, 90, volume0);
   // 0.2 x 0.2 m over a 1 m wide tank.
   const Real expected = 0.2 * 0.2 / 1.0;
   const Real rise = mean_surface_height(sim) - level0;
@@ -115,14 +123,9 @@ TEST(LiquidTwoWay, ASunkenBallRaisesTheWaterByItsVolumeOverTheTanksArea) {
   Simulation sim(parse_scene(ball_scene("markers", "two_way", r, 3, depth), "sink.json"));
   const Real level0 = mean_surface_height(sim);
   const Real volume0 = sim.stats.liquids.at(0).volume;
-  Real worst_volume = 0;
   // Until shortly after the ball has landed (0.5 s): the marker surface loses volume slowly in
   // the sloshing that follows (tests/test_liquid_solver.cpp), the rise is measured before.
-  for (int f = 0; f < 21; ++f) {
-    const FrameResult res = advance_frame(sim);
-    ASSERT_TRUE(res.ok) << "frame " << f << ": " << res.message;
-    worst_volume = std::max(worst_volume, std::abs(sim.stats.liquids.at(0).volume / volume0 - 1));
-  }
+  const Real worst_volume = run_frames(sim, 21, volume0);
   const Real z = sim.state.q[sim.model.bodies[0].q_offset + 2];
   EXPECT_LT(z, r + 0.01) << "the ball rests on the floor";
   // Its mesh's volume (24 rings: a little under the sphere's).
