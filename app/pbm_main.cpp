@@ -32,6 +32,13 @@ int main(int argc, char** argv) {
   simulate->add_option("--stats", sim.stats_out, "per-frame statistics JSON");
   simulate->add_option("--mesh-dir", sim.mesh_dir, "write each frame's surfaces here");
   simulate->add_option("--mesh-format", sim.mesh_format, "obj | gltf | ply");
+  simulate->add_option("--vdb-dir", sim.vdb_dir,
+                       "write each frame's liquid level sets (.vdb) here");
+  simulate->add_option("--surface-voxel", sim.surface_voxel,
+                       "liquid level set voxel, a fraction of a cell (default: half the markers' "
+                       "spacing)");
+  simulate->add_option("--surface-smoothing", sim.surface_smoothing,
+                       "mean-curvature passes over the liquid's level set (default 2)");
 
   pbm::RenderCommandOptions render;
   auto* render_cmd = app.add_subcommand("render", "simulate a scene and write PNG frames");

@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "frame_output.h"
+#include "liquid/liquid_surface_mesh.h"
 #include "mesh_export.h"
 #include "progress_bar.h"
 #include "scene/scene_enum_names.h"
@@ -41,6 +42,33 @@ std::vector<MeshData> body_meshes(const Model& model, const Workspace& ws) {
     mesh.name = model.bodies[b].name;
     mesh.positions = ws.bodies[b].x;
     mesh.triangles = model.bodies[b].tessellation.triangles;
+    meshes.push_back(std::move(mesh));
+  }
+  return meshes;
+}
+
+// Every body's surface, then every liquid's (named after it), meshed from its level set; with a
+// vdb_dir each level set is also written there.
+std::vector<MeshData> surface_meshes(const Model& model, const State& state, const Workspace& ws,
+                                     const SimulateOptions& o, long frame, bool meshes_wanted) {
+  std::vector<MeshData> meshes;
+  if (meshes_wanted) meshes = body_meshes(model, ws);
+  const LiquidSurfaceOptions options{.voxel = o.surface_voxel, .smoothing = o.surface_smoothing};
+  for (std::size_t l = 0; l < model.liquids.size(); ++l) {
+    const LiquidModel& liquid = model.liquids[l];
+    std::string vdb;
+    if (!o.vdb_dir.empty()) {
+      char name[64];
+      std::snprintf(name, sizeof name, "_%05ld.vdb", frame);
+      vdb = (fs::path(o.vdb_dir) / ("liquid_" + liquid.def.name + name)).string();
+    }
+    if (!meshes_wanted && vdb.empty()) continue;
+    LiquidSurfaceMesh surface = liquid_surface_mesh(liquid, state.liquids[l], options, vdb);
+    if (!meshes_wanted || surface.triangles.empty()) continue;  // no liquid left
+    MeshData mesh;
+    mesh.name = liquid.def.name;
+    mesh.positions = std::move(surface.positions);
+    mesh.triangles = std::move(surface.triangles);
     meshes.push_back(std::move(mesh));
   }
   return meshes;
@@ -131,6 +159,21 @@ int run_simulate(const SimulateOptions& o) {
         throw Error(o.mesh_dir, "", "cannot create --mesh-dir: " + ec.message());
       }
     }
+    if (!o.vdb_dir.empty()) {
+      if (model.liquids.empty())
+        throw Error(o.scene, "liquids", "--vdb-dir: the scene has no liquid");
+      std::error_code ec;
+      fs::create_directories(o.vdb_dir, ec);
+      if (ec || !fs::is_directory(o.vdb_dir)) {
+        throw Error(o.vdb_dir, "", "cannot create --vdb-dir: " + ec.message());
+      }
+    }
+    if (!(o.surface_voxel >= 0 && o.surface_voxel <= 4)) {
+      throw Error("", "--surface-voxel", "must be in [0, 4] (a fraction of a cell; 0: default)");
+    }
+    if (o.surface_smoothing < 0 || o.surface_smoothing > 100) {
+      throw Error("", "--surface-smoothing", "must be in [0, 100]");
+    }
   } catch (const Error& e) {
     spdlog::error("{}", e.what());
     return 2;
@@ -148,10 +191,15 @@ int run_simulate(const SimulateOptions& o) {
       stats << frame_stats_json(sim->world, fs_, frame);
       first_stats = false;
     }
-    if (mesh_format) {
-      char name[64];
-      std::snprintf(name, sizeof name, "frame_%05ld%s", frame, mesh_format_extension(*mesh_format));
-      write_mesh((fs::path(o.mesh_dir) / name).string(), *mesh_format, body_meshes(model, sim->ws));
+    if (mesh_format || !o.vdb_dir.empty()) {
+      const std::vector<MeshData> meshes =
+          surface_meshes(model, state, sim->ws, o, frame, mesh_format.has_value());
+      if (mesh_format && !meshes.empty()) {
+        char name[64];
+        std::snprintf(name, sizeof name, "frame_%05ld%s", frame,
+                      mesh_format_extension(*mesh_format));
+        write_mesh((fs::path(o.mesh_dir) / name).string(), *mesh_format, meshes);
+      }
     }
   };
   int code = 0;

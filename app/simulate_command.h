@@ -17,6 +17,13 @@ struct SimulateOptions {
   std::string stats_out;   // stats.json, empty = none
   std::string mesh_dir;    // empty = none
   std::string mesh_format = "obj";
+  // Each liquid's level set per frame as liquid_<name>_NNNNN.vdb (engine/liquid/
+  // liquid_surface_mesh.h); empty = none.
+  std::string vdb_dir;
+  // The level set's voxel as a fraction of a liquid cell (0: the markers' half spacing) and its
+  // smoothing passes, for --mesh-dir and --vdb-dir.
+  double surface_voxel = 0;
+  int surface_smoothing = 2;
 };
 
 // Exit codes: 0 ok, 1 simulation failed, 2 bad input (docs/architecture.md, "Errors and exit

@@ -7,6 +7,11 @@ find_package(assimp 5.2 REQUIRED CONFIG)
 if(PBM_BUILD_TESTS)
   find_package(GTest REQUIRED)
 endif()
+# The liquid's surface mesh and .vdb level sets (engine/liquid/liquid_surface_mesh.h). Debian
+# installs OpenVDB's find module beside its library rather than on CMake's path; it wants Boost's
+# iostreams (libboost-iostreams-dev), whose headers OpenVDB's own include.
+list(APPEND CMAKE_MODULE_PATH /usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/OpenVDB)
+find_package(OpenVDB 10 REQUIRED)
 # Bullet is the side-by-side peer of `pbm bench deform`.
 find_package(Bullet REQUIRED)
 # The renderer's headless context and the PNG frames. Never OpenGL::GL (PLATFORM.md): OSMesa's

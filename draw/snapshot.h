@@ -33,6 +33,9 @@ enum class Layer { scene, overlay };
 struct Material {
   Vec3f color{0.8f, 0.3f, 0.3f};  // linear RGB in [0, 1]
   float roughness = 0.5f;         // 0 = mirror-like highlight, 1 = matte
+  // Below 1: drawn after everything opaque, blended over it without writing depth (a liquid's
+  // surface shows what lies under it); it casts no shadow.
+  float opacity = 1.0f;
 };
 
 // Triangles and element edges over a mesh's vertices: constant while time runs.

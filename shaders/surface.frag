@@ -8,6 +8,7 @@ in vec4 v_light_clip;
 uniform vec3 u_camera;
 uniform vec3 u_base_color;
 uniform float u_roughness;
+uniform float u_opacity;  // 1: opaque; below, blended over what is behind
 uniform vec3 u_key_direction;   // towards the key light
 uniform vec3 u_fill_direction;  // towards the fill light
 uniform sampler2DShadow u_shadow_map;
@@ -50,5 +51,5 @@ void main() {
   color = color / (1.0 + color);  // Reinhard
   // Display gamma 2 (sqrt): within a few percent of sRGB's, and a software rasterizer pays for
   // three pow() per pixel.
-  frag_color = vec4(sqrt(color), 1.0);
+  frag_color = vec4(sqrt(color), u_opacity);
 }

@@ -221,7 +221,8 @@ TEST(SceneFormat, DefaultsAreWhatTheParserGives) {
                            "b": {"world": [0, 0, 0]}}],
           "figures": [{"segments": [{"sites": [{}]}]}],
           "liquids": [{"fluid": [{"box": {"min": [0, 0, 0], "max": [1, 1, 0.5]}}],
-                       "inflows": [{"box": {"min": [0, 0, 0.5], "max": [0.2, 1, 0.7]}}]}]})");
+                       "inflows": [{"box": {"min": [0, 0, 0.5], "max": [0.2, 1, 0.7]}}],
+                       "surface_waves": [{}]}]})");
   const json written = json::parse(scene_to_json(parse_scene(given.dump(), kFile)));
   const std::vector<SectionDescription> sections = describe_scene_format();
   const std::vector<std::pair<std::string, json::json_pointer>> items = {
@@ -246,7 +247,8 @@ TEST(SceneFormat, DefaultsAreWhatTheParserGives) {
       {"site", json::json_pointer("/figures/0/segments/0/sites/0")},
       {"liquid", json::json_pointer("/liquids/0")},
       {"fluid_region", json::json_pointer("/liquids/0/fluid/0")},
-      {"inflow", json::json_pointer("/liquids/0/inflows/0")}};
+      {"inflow", json::json_pointer("/liquids/0/inflows/0")},
+      {"surface_wave", json::json_pointer("/liquids/0/surface_waves/0")}};
   for (const auto& [name, pointer] : items) {
     const json& object = written[pointer];
     const json& input = given.contains(pointer) ? given[pointer] : json::object();

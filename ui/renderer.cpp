@@ -99,7 +99,7 @@ struct Renderer::Impl {
     set(shadow, "u_view_proj", light);
     // Meshes, primitives and height fields cast; planes only receive.
     for (const Solid& s : buffers.solids) {
-      if (s.layer != draw::Layer::scene) continue;
+      if (s.layer != draw::Layer::scene || s.material.opacity < 1) continue;
       place(shadow, s);
       draw_shadow_casters(s);
     }
@@ -122,6 +122,7 @@ struct Renderer::Impl {
   void draw_lit(const Solid& s) const {
     set(surface, "u_base_color", s.material.color);
     set(surface, "u_roughness", s.material.roughness);
+    set(surface, "u_opacity", s.material.opacity);
     place(surface, s);
     draw_triangles(s);
   }
@@ -292,7 +293,7 @@ void Renderer::render(const draw::Snapshot& s, const Camera& camera, const Rende
   // Solids before planes: the planes behind them then fail the depth test before shading. With
   // overlays, fills with element edges are pushed back so that their edges pass the depth test.
   for (const Solid& solid : r.buffers.solids) {
-    if (solid.layer != draw::Layer::scene) continue;
+    if (solid.layer != draw::Layer::scene || solid.material.opacity < 1) continue;
     const bool wired = o.overlays && solid.edge_count > 0;
     if (wired) {
       gl.Enable(GL_POLYGON_OFFSET_FILL);
@@ -314,6 +315,26 @@ void Renderer::render(const draw::Snapshot& s, const Camera& camera, const Rende
   gl.DrawArrays(GL_TRIANGLES, 0, 3);
   gl.DepthMask(GL_TRUE);
   gl.DepthFunc(GL_LESS);
+
+  // Translucent solids over the opaque picture, depth-tested against it but not writing depth,
+  // so a surface's far side shows through its near side. Unsorted: where two translucent layers
+  // overlap, their order changes the blend a little.
+  bool translucent = false;
+  for (const Solid& solid : r.buffers.solids) {
+    if (solid.layer != draw::Layer::scene || !(solid.material.opacity < 1)) continue;
+    if (!translucent) {
+      r.use_surface(view_proj, light, camera, o.shadows);
+      gl.Enable(GL_BLEND);
+      gl.BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+      gl.DepthMask(GL_FALSE);
+      translucent = true;
+    }
+    r.draw_lit(solid);
+  }
+  if (translucent) {
+    gl.DepthMask(GL_TRUE);
+    gl.Disable(GL_BLEND);
+  }
 
   if (o.overlays) r.draw_overlay(view_proj, light, camera, o.shadows);
   gl.BindVertexArray(0);

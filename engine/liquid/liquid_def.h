@@ -48,6 +48,26 @@ struct InflowDef {
   Real markers_per_second = 0;   // 0: enough to keep the released liquid at the marker density
 };
 
+// A travelling wave forced by a pressure history on the free surface (16.6.2): the book's (16.17)
+// p = A + B cos(C s - omega t) on every Surface cell, s the distance along `direction`, with C =
+// pi / L (16.19) for a wavelength 2L. The book's B of (16.18) is not dimensionally a pressure;
+// ours is the pressure whose resonant forcing (omega from the wave's dispersion, omega^2 = g C
+// tanh(C D)) grows the wave to `amplitude` in `duration`: B = 2 rho g a / (omega T) (linear
+// theory, liquid/liquid_model.cpp). After the forcing stops the wave runs on freely.
+struct SurfaceWaveDef {
+  Real amplitude = 0.02;           // a [m], reached at the end of the forcing
+  Real wavelength = 1;             // 2L [m]
+  Vec3 direction = Vec3::UnitX();  // across gravity: the way the wave travels
+  Real depth = 0;                  // D [m], the mean depth; 0: the liquid's at the start
+  Real start = 0;                  // [s]
+  Real duration = 2;               // T [s], the forcing's time
+};
+
+// What the studio and `pbm render` draw of a marker liquid: its surface (a translucent mesh from
+// a level set of the markers, liquid/liquid_surface_mesh.h), the markers as points, or both. A
+// height field always draws its surface.
+enum class LiquidDisplay { surface, markers, both };
+
 struct LiquidDef {
   std::string name;
   LiquidBoxDef domain{Vec3::Zero(), Vec3::Ones()};  // the grid's extent [m]
@@ -64,9 +84,11 @@ struct LiquidDef {
   WallKind walls = WallKind::free_slip;
   LiquidCoupling coupling = LiquidCoupling::two_way;
   Real surface_pressure = 0;  // applied on Surface cells above the atmosphere's [Pa]
+  std::vector<SurfaceWaveDef> surface_waves;  // travelling pressure waves on top of it
   LiquidAdvection advection = LiquidAdvection::semi_lagrangian;
   PressureSolver solver = PressureSolver::mic_pcg;
   SurfaceMethod surface = SurfaceMethod::markers;
+  LiquidDisplay display = LiquidDisplay::surface;
   Real cfl = 0.5;         // the CFL number (16.3) each substep keeps to, in (0, 1]
   Real relaxation = 1.7;  // beta_0 of (16.7), in [1, 2)
   Real tolerance = 1e-4;  // epsilon: every Full cell's |D| of (16.5) below it [1/s]

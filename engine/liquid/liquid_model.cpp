@@ -63,7 +63,56 @@ void find_mirror_faces(LiquidModel& m) {
   }
 }
 
+// The liquid's mean depth at the start: its regions' volume inside the domain over the domain's
+// floor (across `vertical`).
+Real initial_depth(const LiquidDef& def, int vertical) {
+  const Vec3 extent = def.domain.max - def.domain.min;
+  Real volume = 0;
+  for (const FluidRegionDef& region : def.fluid) {
+    const Vec3 lo = region.box.min.cwiseMax(def.domain.min);
+    const Vec3 hi = region.box.max.cwiseMin(def.domain.max);
+    volume += (hi - lo).cwiseMax(0.0).prod();
+  }
+  return volume * extent[vertical] / extent.prod();
+}
+
+// Resonant forcing: a pressure B cos(k s - omega t) travelling at the wave's own phase speed
+// grows the linear wave's amplitude as B omega t / (2 rho g) (from eta'' + omega^2 eta =
+// -k tanh(k D) p / rho at the surface), so B / rho = 2 g a / (omega T) reaches a at t = T.
+void compile_surface_waves(LiquidModel& m, const Vec3& gravity, const std::string& file,
+                           const std::string& path) {
+  const Real g = gravity.norm();
+  for (std::size_t w = 0; w < m.def.surface_waves.size(); ++w) {
+    const SurfaceWaveDef& def = m.def.surface_waves[w];
+    const std::string at = path + ".surface_waves[" + std::to_string(w) + "]";
+    if (g <= 0) throw Error(file, at, "a surface wave needs gravity to restore it");
+    Vec3 n = def.direction - def.direction.dot(gravity) / (g * g) * gravity;
+    if (m.thin_axis >= 0) n[m.thin_axis] = 0;  // a 2D liquid's waves run in its plane
+    if (!(n.norm() > 1e-9 * std::max(1.0, def.direction.norm()))) {
+      throw Error(file, at + ".direction", "must have a part across gravity in the liquid's plane");
+    }
+    const Real depth = def.depth > 0 ? def.depth : initial_depth(m.def, m.vertical_axis);
+    if (!(depth > 0)) throw Error(file, at + ".depth", "the liquid starts with no depth");
+    const Real k = 2 * M_PI / def.wavelength;  // C = pi / L of (16.19), 2L the wavelength
+    const Real omega = std::sqrt(g * k * std::tanh(k * depth));
+    m.surface_waves.push_back({.wave_vector = k * n.normalized(),
+                               .omega = omega,
+                               .pressure = 2 * g * def.amplitude / (omega * def.duration),
+                               .start = def.start,
+                               .end = def.start + def.duration});
+  }
+}
+
 }  // namespace
+
+Real surface_wave_pressure(const LiquidModel& model, const Vec3& x, Real t) {
+  Real p = 0;
+  for (const SurfaceWaveModel& wave : model.surface_waves) {
+    if (t < wave.start || t >= wave.end) continue;
+    p += wave.pressure * std::cos(wave.wave_vector.dot(x) - wave.omega * (t - wave.start));
+  }
+  return p;
+}
 
 LiquidModel build_liquid_model(const LiquidDef& def, const Vec3& gravity, const std::string& file,
                                int index) {
@@ -141,6 +190,7 @@ LiquidModel build_liquid_model(const LiquidDef& def, const Vec3& gravity, const 
   m.vertical_axis = 2;
   if (gravity.squaredNorm() > 0) gravity.cwiseAbs().maxCoeff(&m.vertical_axis);
   find_mirror_faces(m);
+  compile_surface_waves(m, gravity, file, path);
   return m;
 }
 

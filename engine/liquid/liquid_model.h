@@ -17,6 +17,15 @@ struct InflowModel {
   LiquidBoxDef box;             // where they are released (clipped to the domain)
 };
 
+// A surface wave of the scene compiled (liquid_def.h, SurfaceWaveDef): the kinematic pressure
+// amplitude B / rho of (16.17) [m^2/s^2], its wave vector C n (16.19) and frequency.
+struct SurfaceWaveModel {
+  Vec3 wave_vector = Vec3::Zero();  // [1/m], across gravity
+  Real omega = 0;                   // [rad/s], from omega^2 = g k tanh(k D)
+  Real pressure = 0;                // B / rho [m^2/s^2]
+  Real start = 0, end = 0;          // [s]
+};
+
 struct LiquidModel {
   LiquidDef def;
   MacGrid grid;
@@ -26,6 +35,7 @@ struct LiquidModel {
   // The Inflow index of each Inflow cell (-1 elsewhere).
   std::vector<int> inflow_of;
   std::vector<InflowModel> inflows;
+  std::vector<SurfaceWaveModel> surface_waves;
   int thin_axis = -1;     // the axis of one cell in a 2D grid, -1 in 3D
   int vertical_axis = 2;  // the axis most against gravity (the height field's columns)
   int markers_per_cell = 8;
@@ -48,6 +58,9 @@ struct LiquidModel {
 // the cell limit).
 LiquidModel build_liquid_model(const LiquidDef& def, const Vec3& gravity, const std::string& file,
                                int index);
+
+// The surface waves' kinematic pressure [m^2/s^2] at x and time t (0 where none is forcing).
+Real surface_wave_pressure(const LiquidModel& model, const Vec3& x, Real t);
 
 // The most cells a grid may have: a 256^3 grid's arrays are about 1 GB (scenes/README.md,
 // "Limits").

@@ -116,6 +116,11 @@ void build_liquid_probe(const LiquidModel& model, const LiquidState& state, cons
   const Real applied = model.def.surface_pressure / model.def.density;
   // Full cells: the solve's pressure. Surface cells: zero (plus the applied pressure) at the
   // surface, which the fill puts (fill - 1/2) h above the centre of a cell filled from below.
+  // The surface waves' pressure where they force the surface (16.17), felt through the column.
+  auto wave_at = [&](int c) {
+    return model.surface_waves.empty() ? 0.0
+                                       : surface_wave_pressure(model, g.centre(c), state.time);
+  };
   const bool two_way = model.two_way;
   if (two_way) set_free_surface_heights(model, gravity, ws);
   for (int c = 0; c < g.size; ++c) {
@@ -126,13 +131,13 @@ void build_liquid_probe(const LiquidModel& model, const LiquidState& state, cons
       const Real eta = two_way ? ws.probe_eta[k] : kNoSurface;
       if (eta != kNoSurface) {
         const Real z = g.origin[v] + (index_along(g, v, c) - 0.5) * hv;
-        p[k] = applied + gv * (gravity[v] <= 0 ? eta - z : z - eta);
+        p[k] = applied + wave_at(c) + gv * (gravity[v] <= 0 ? eta - z : z - eta);
       } else {
         p[k] = state.pressure[k];
       }
       known[k] = kKnown;
     } else if (ws.flags[k] == CellFlag::surface) {
-      p[k] = applied + gv * (ws.fill[k] - 0.5) * hv;
+      p[k] = applied + wave_at(c) + gv * (ws.fill[k] - 0.5) * hv;
       known[k] = kKnown;
     }
   }

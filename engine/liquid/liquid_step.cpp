@@ -36,16 +36,18 @@ Real fastest_rate(const LiquidModel& model, const std::vector<CellFlag>* flags,
   return rate;
 }
 
-// Pressure where no solve sets it: the applied one in Surface and Empty cells (16.2.2); an
-// Outflow cell's follows the liquid beside it (the last substep's), so the liquid leaves at the
-// rate its own pressure drives.
+// Pressure where no solve sets it: the applied one in Surface and Empty cells (16.2.2), with the
+// surface waves' at time t (16.17); an Outflow cell's follows the liquid beside it (the last
+// substep's), so the liquid leaves at the rate its own pressure drives.
 void set_boundary_pressure(const LiquidModel& model, const std::vector<CellFlag>& flags,
-                           Real applied, std::vector<Real>& p) {
+                           Real applied, Real t, std::vector<Real>& p) {
   const MacGrid& g = model.grid;
+  const bool waves = !model.surface_waves.empty();
   for (int c = 0; c < g.size; ++c) {
     const CellFlag f = flags[static_cast<std::size_t>(c)];
     if (f == CellFlag::surface || f == CellFlag::empty) {
-      p[static_cast<std::size_t>(c)] = applied;
+      p[static_cast<std::size_t>(c)] =
+          applied + (waves ? surface_wave_pressure(model, g.centre(c), t) : 0.0);
     } else if (f == CellFlag::outflow) {
       Real sum = 0;
       int n = 0;
@@ -109,7 +111,7 @@ void liquid_substep(const LiquidModel& model, const LiquidInputs& inputs, Real d
   stats.solid_cells = static_cast<int>(ws.moving.cells.size());
   // 3-4: labels, boundary pressures and velocities.
   label_cells(model, state, ws.flags, ws.fill, ws.count, &ws.moving);
-  set_boundary_pressure(model, ws.flags, applied, state.pressure);
+  set_boundary_pressure(model, ws.flags, applied, state.time, state.pressure);
   MacField& field = state.velocity;
   set_wall_velocities(model, ws.flags, ws.inflow_velocity, ws.moving, field);
   set_surface_velocities(model, ws.flags, field);

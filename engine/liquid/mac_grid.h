@@ -57,6 +57,8 @@ struct MacGrid {
   Vec3 centre(int i, int j, int k) const {
     return origin + Vec3((i - 0.5) * h.x(), (j - 0.5) * h.y(), (k - 0.5) * h.z());
   }
+  // The centre of the cell at array index c.
+  Vec3 centre(int c) const { return centre(c % sy, (c / sy) % (n.y() + 2), c / sz); }
 };
 
 // Velocity components on the faces and pressure at the centres, each grid.size long.

@@ -69,6 +69,10 @@ inline constexpr NameTable<PressureSolver, 3> kPressureSolverNames{
      {"mgpcg", PressureSolver::mgpcg}}};
 inline constexpr NameTable<SurfaceMethod, 2> kSurfaceMethodNames{
     {{"markers", SurfaceMethod::markers}, {"height_field", SurfaceMethod::height_field}}};
+inline constexpr NameTable<LiquidDisplay, 3> kLiquidDisplayNames{
+    {{"surface", LiquidDisplay::surface},
+     {"markers", LiquidDisplay::markers},
+     {"both", LiquidDisplay::both}}};
 inline constexpr NameTable<LiquidCoupling, 2> kLiquidCouplingNames{
     {{"one_way", LiquidCoupling::one_way}, {"two_way", LiquidCoupling::two_way}}};
 inline constexpr NameTable<WallKind, 2> kWallKindNames{

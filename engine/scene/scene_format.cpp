@@ -20,7 +20,7 @@ std::vector<SectionDescription> describe_scene_format() {
           describe_section(kMocapSection),        describe_section(kMocapJointSection),
           describe_section(kMocapSiteSection),    describe_section(kLiquidSection),
           describe_section(kFluidRegionSection),  describe_section(kLiquidBoxSection),
-          describe_section(kInflowSection)};
+          describe_section(kInflowSection),       describe_section(kSurfaceWaveSection)};
 }
 
 const SectionDescription* find_section(const std::vector<SectionDescription>& sections,

@@ -80,6 +80,34 @@ constexpr auto kInflowFields = std::to_array<Field<InflowDef>>({
                         "the released liquid at the marker density."}),
 });
 
+constexpr auto kSurfaceWaveFields = std::to_array<Field<SurfaceWaveDef>>({
+    value<&SurfaceWaveDef::amplitude>(
+        {.key = "amplitude",
+         .unit = "m",
+         .range = kPositive,
+         .description = "a: the wave's height above the mean when the forcing ends."}),
+    value<&SurfaceWaveDef::wavelength>({.key = "wavelength",
+                                        .unit = "m",
+                                        .range = kPositive,
+                                        .description = "2L, crest to crest; C = pi / L (16.19)."}),
+    value<&SurfaceWaveDef::direction>(
+        {.key = "direction",
+         .description = "The way it travels (its part across gravity, in a 2D liquid's plane)."}),
+    value<&SurfaceWaveDef::depth>(
+        {.key = "depth",
+         .unit = "m",
+         .range = kNonNegative,
+         .description = "D, the mean depth its speed follows from; 0: the liquid's at the start."}),
+    value<&SurfaceWaveDef::start>(
+        {.key = "start", .unit = "s", .range = kNonNegative, .description = "When it starts."}),
+    value<&SurfaceWaveDef::duration>(
+        {.key = "duration",
+         .unit = "s",
+         .range = kPositive,
+         .description = "T: how long the pressure forces the wave, growing it to its amplitude "
+                        "(a shorter T: a stronger pressure)."}),
+});
+
 constexpr auto kLiquidFields = std::to_array<Field<LiquidDef>>({
     value<&LiquidDef::name>({.key = "name", .default_note = "liquid<i>"}),
     object<&LiquidDef::domain, kLiquidBoxSection>(
@@ -139,6 +167,12 @@ constexpr auto kLiquidFields = std::to_array<Field<LiquidDef>>({
         {.key = "surface_pressure",
          .unit = "Pa",
          .description = "Applied on the free surface above the atmosphere's (16.6.2)."}),
+    list<&LiquidDef::surface_waves, kSurfaceWaveSection>(
+        {.key = "surface_waves",
+         .limit = kMaxLiquidPorts,
+         .section = "surface_wave",
+         .description = "Travelling waves forced by a pressure history on the free surface, p "
+                        "= B cos(C s - omega t) (16.17)-(16.19)."}),
     choice<&LiquidDef::advection, kLiquidAdvectionNames>(
         {.key = "advection",
          .description = "book: the explicit differences of (16.2); semi_lagrangian: a "
@@ -151,6 +185,10 @@ constexpr auto kLiquidFields = std::to_array<Field<LiquidDef>>({
         {.key = "surface",
          .description = "markers (16.3.1), or a height field (16.3.3) for surfaces that do not "
                         "overturn."}),
+    choice<&LiquidDef::display, kLiquidDisplayNames>(
+        {.key = "display",
+         .description = "What is drawn of a marker liquid: its surface (a translucent mesh of "
+                        "a level set of the markers), the markers as points, or both."}),
     value<&LiquidDef::cfl>({.key = "cfl",
                             .range = {.lo = 0, .hi = 1, .lo_open = true},
                             .description = "The CFL number (16.3) every substep keeps to: the "
@@ -251,6 +289,9 @@ constexpr Section<FluidRegionDef> kFluidRegionSection{
 
 constexpr Section<InflowDef> kInflowSection{
     .name = "inflow", .noun = "inflow", .fields = kInflowFields};
+
+constexpr Section<SurfaceWaveDef> kSurfaceWaveSection{
+    .name = "surface_wave", .noun = "surface wave", .fields = kSurfaceWaveFields};
 
 // A tank 1 m wide with water 0.4 m deep at rest, beside the origin, for the studio's "add".
 constexpr Section<LiquidDef> kLiquidSection{

@@ -38,6 +38,7 @@ extern const Section<LiquidDef> kLiquidSection;                // scene_liquids_
 extern const Section<FluidRegionDef> kFluidRegionSection;      // scene_liquids_json.cpp
 extern const Section<LiquidBoxDef> kLiquidBoxSection;          // scene_liquids_json.cpp
 extern const Section<InflowDef> kInflowSection;                // scene_liquids_json.cpp
+extern const Section<SurfaceWaveDef> kSurfaceWaveSection;      // scene_liquids_json.cpp
 
 // Whether an obstacle of `kind` has the key (its point is "point", "center" or "position").
 bool obstacle_has_key(ObstacleKind kind, std::string_view key);

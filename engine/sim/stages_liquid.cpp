@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include "collide/obstacle.h"
 #include "deform/body_dynamics.h"
 #include "liquid/cell_labels.h"
 #include "liquid/liquid_probe.h"
+#include "liquid/liquid_surface_mesh.h"
 #include "sim/liquid_body_loads.h"
 #include "sim/tracks.h"
 
@@ -16,6 +18,8 @@ namespace pbm::stages {
 namespace {
 
 const draw::Material kWaterMaterial{{0.16f, 0.45f, 0.85f}, 0.15f};
+// A marker liquid's surface mesh: translucent, so what is under the water shows.
+const draw::Material kWaterSurfaceMaterial{{0.16f, 0.45f, 0.85f}, 0.15f, 0.7f};
 const draw::Material kLiquidSolidMaterial{{0.5f, 0.47f, 0.42f}, 0.9f};
 const draw::Vec3f kMarkerColor{0.25f, 0.55f, 0.95f};
 const draw::Vec3f kDomainColor{0.35f, 0.6f, 0.9f};
@@ -388,6 +392,21 @@ void add_liquid_drawables(const Model& model, const Inputs& inputs, const State&
         }
       }
     } else if (!s.markers.empty()) {
+      const LiquidDisplay display = m.def.display;
+      if (display != LiquidDisplay::markers) {
+        // The surface around the markers, from their level set (16.3.1, liquid_surface_mesh.h).
+        LiquidSurfaceMesh surface = liquid_surface_mesh(m, s, {});
+        auto positions = std::make_shared<std::vector<draw::Vec3f>>();
+        positions->reserve(surface.positions.size());
+        for (const Vec3& x : surface.positions) positions->push_back(x.cast<float>());
+        auto topology = std::make_shared<draw::MeshTopology>();
+        topology->triangles = std::move(surface.triangles);
+        snap.meshes.push_back({.name = m.def.name,
+                               .positions = std::move(positions),
+                               .topology = std::move(topology),
+                               .material = kWaterSurfaceMaterial});
+      }
+      if (display == LiquidDisplay::surface) continue;
       // The marker particles are the liquid (16.3.1): drawn in the picture, not as an overlay.
       draw::Points& points = snap.points.emplace_back();
       points.positions.reserve(s.markers.size());
