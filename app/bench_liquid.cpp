@@ -56,10 +56,13 @@ int run_bench_liquid(int largest) {
     const double bound_ns = kStreamedDoublesPerCell * sizeof(double) / bandwidth * 1e9;
     std::printf("  %d^3: triad bandwidth %.1f GB/s, bound %.2f ns/cell/substep\n", n,
                 bandwidth / 1e9, bound_ns);
-    for (LiquidAdvection advection : {LiquidAdvection::semi_lagrangian, LiquidAdvection::book}) {
+    for (LiquidAdvection advection :
+         {LiquidAdvection::semi_lagrangian, LiquidAdvection::book, LiquidAdvection::flip}) {
       for (PressureSolver solver :
            {PressureSolver::mgpcg, PressureSolver::mic_pcg, PressureSolver::relaxation}) {
         if (solver == PressureSolver::relaxation && n > 64) continue;  // minutes a substep
+        // The advection's cost shows beside one solver.
+        if (advection == LiquidAdvection::flip && solver != PressureSolver::mgpcg) continue;
         const LiquidDef def = dam_break(n, advection, solver);
         const LiquidInputs inputs{.gravity = kGravity, .surface_pressure = 0};
         const LiquidModel model = build_liquid_model(def, kGravity, "bench", 0);
@@ -89,7 +92,9 @@ int run_bench_liquid(int largest) {
         liquid_substep(relative_model, inputs, liquid_substep_limit(model, inputs, copy), copy, ws,
                        one);
         std::printf("%6d %-16s %-10s %9d %10.1f %10.1f %10.2f %8.1f %8d\n", n,
-                    advection == LiquidAdvection::book ? "book (16.2)" : "semi-Lagrangian",
+                    advection == LiquidAdvection::book   ? "book (16.2)"
+                    : advection == LiquidAdvection::flip ? "PIC/FLIP"
+                                                         : "semi-Lagrangian",
                     solver == PressureSolver::mgpcg     ? "mgpcg"
                     : solver == PressureSolver::mic_pcg ? "mic_pcg"
                                                         : "relaxation",

@@ -11,8 +11,11 @@
 namespace pbm {
 
 // The convective terms of the momentum update: the book's explicit finite differences of (16.2),
-// or the semi-Lagrangian backtrace of the velocity (unconditionally stable, more diffusive).
-enum class LiquidAdvection { book, semi_lagrangian };
+// the semi-Lagrangian backtrace of the velocity (unconditionally stable, more diffusive), or
+// PIC/FLIP: the markers carry the velocity (their own, liquid/particle_transfer.h), the grid
+// only adds gravity, viscosity and pressure (the low-dissipation choice of Houdini's and
+// Blender's FLIP liquids; markers only).
+enum class LiquidAdvection { book, semi_lagrangian, flip };
 // The pressure solve: the book's cell-by-cell relaxation (16.5)-(16.9), or conjugate gradients on
 // the same system preconditioned by incomplete Cholesky MIC(0) or by a multigrid V-cycle.
 enum class PressureSolver { relaxation, mic_pcg, mgpcg };
@@ -86,6 +89,10 @@ struct LiquidDef {
   Real surface_pressure = 0;  // applied on Surface cells above the atmosphere's [Pa]
   std::vector<SurfaceWaveDef> surface_waves;  // travelling pressure waves on top of it
   LiquidAdvection advection = LiquidAdvection::semi_lagrangian;
+  // advection flip: the FLIP share of each marker's velocity update (Zhu & Bridson 2005): 1, pure
+  // FLIP (the grid's change added to the marker's own velocity: no dissipation, some noise);
+  // 0, PIC (the grid's velocity taken: smooth, as diffusive as one interpolation per substep).
+  Real flip_ratio = 0.95;
   PressureSolver solver = PressureSolver::mic_pcg;
   SurfaceMethod surface = SurfaceMethod::markers;
   LiquidDisplay display = LiquidDisplay::surface;

@@ -124,6 +124,11 @@ LiquidModel build_liquid_model(const LiquidDef& def, const Vec3& gravity, const 
                 "a grid of " + std::to_string(cells) + " cells: must have 1 to " +
                     std::to_string(kMaxLiquidCells) + " cells, at least 1 per axis");
   }
+  if (def.advection == LiquidAdvection::flip && def.surface != SurfaceMethod::markers) {
+    throw Error(file, path + ".advection",
+                "flip: the markers carry the velocity, and a height field has none (surface "
+                "\"markers\")");
+  }
   LiquidModel m;
   m.def = def;
   const Vec3 extent = def.domain.max - def.domain.min;

@@ -138,6 +138,13 @@ LiquidState initial_liquid_state(const LiquidModel& model, const Vec3& gravity) 
     s.markers.reserve(
         std::max(s.markers.size(), static_cast<std::size_t>(model.grid.interior_cells()) *
                                        static_cast<std::size_t>(model.markers_per_cell)));
+    if (model.def.advection == LiquidAdvection::flip) {
+      // The grid's starting velocity where each marker is.
+      s.marker_velocity.reserve(s.markers.capacity());
+      for (const Vec3& x : s.markers) {
+        s.marker_velocity.push_back(interpolate_velocity(model.grid, s.velocity.u, x));
+      }
+    }
   }
   seed_pressure(model, gravity, s);
   s.released.assign(model.inflows.size(), 0.0);
@@ -150,6 +157,7 @@ void hash_liquid_state(const LiquidState& s, std::uint64_t& h) {
   for (const auto& c : s.velocity.u) mix(c.data(), sizeof(Real) * c.size());
   mix(s.pressure.data(), sizeof(Real) * s.pressure.size());
   mix(s.markers.data(), sizeof(Vec3) * s.markers.size());
+  mix(s.marker_velocity.data(), sizeof(Vec3) * s.marker_velocity.size());
   mix(s.height.data(), sizeof(Real) * s.height.size());
   mix(s.released.data(), sizeof(Real) * s.released.size());
   mix(&s.released_total, sizeof s.released_total);
@@ -161,7 +169,7 @@ std::size_t liquid_state_bytes(const LiquidState& s) {
   std::size_t bytes = sizeof s;
   for (const auto& c : s.velocity.u) bytes += sizeof(Real) * c.size();
   return bytes + sizeof(Real) * (s.pressure.size() + s.height.size() + s.released.size()) +
-         sizeof(Vec3) * s.markers.size();
+         sizeof(Vec3) * (s.markers.size() + s.marker_velocity.size());
 }
 
 }  // namespace pbm

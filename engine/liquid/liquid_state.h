@@ -13,8 +13,10 @@ namespace pbm {
 struct LiquidState {
   Real time = 0;      // how far the liquid has advanced [s] (it steps on its own CFL clock)
   MacField velocity;  // u, v, w on the faces [m/s]
-  std::vector<Real> pressure;        // kinematic pressure p / rho at the centres [m^2/s^2] (16.1)
-  std::vector<Vec3> markers;         // marker particles (16.3.1) [m]
+  std::vector<Real> pressure;  // kinematic pressure p / rho at the centres [m^2/s^2] (16.1)
+  std::vector<Vec3> markers;   // marker particles (16.3.1) [m]
+  // Each marker's velocity with advection flip (empty otherwise) [m/s].
+  std::vector<Vec3> marker_velocity;
   std::vector<Real> height;          // surface height per column (16.3.3) [m], height field only
   std::vector<Real> released;        // per inflow: markers owed but not yet released (a fraction)
   std::uint64_t released_total = 0;  // markers ever released: seeds where the next one goes

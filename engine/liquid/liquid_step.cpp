@@ -7,6 +7,7 @@
 #include "liquid/boundary_conditions.h"
 #include "liquid/cell_labels.h"
 #include "liquid/momentum.h"
+#include "liquid/particle_transfer.h"
 #include "liquid/surface_tracking.h"
 
 namespace pbm {
@@ -113,6 +114,9 @@ void liquid_substep(const LiquidModel& model, const LiquidInputs& inputs, Real d
   label_cells(model, state, ws.flags, ws.fill, ws.count, &ws.moving);
   set_boundary_pressure(model, ws.flags, applied, state.time, state.pressure);
   MacField& field = state.velocity;
+  const bool carried = model.def.advection == LiquidAdvection::flip;
+  // PIC/FLIP: the markers' velocities are the substep's starting field where they reach.
+  if (carried) markers_to_grid(model, state.markers, state.marker_velocity, ws, field);
   set_wall_velocities(model, ws.flags, ws.inflow_velocity, ws.moving, field);
   set_surface_velocities(model, ws.flags, field);
   extrapolate_velocities(model, ws.flags, kExtrapolationLayers, ws.known, ws.next_known, field);
@@ -146,7 +150,10 @@ void liquid_substep(const LiquidModel& model, const LiquidInputs& inputs, Real d
   if (model.def.surface == SurfaceMethod::height_field) {
     advance_height_field(model, field, dt, state, ws);
   } else {
-    stats.removed += advect_markers(model, field, dt, state.markers, &ws.moving);
+    // The markers' velocities take the substep's change before they move with it.
+    if (carried) grid_to_markers(model, ws.previous, field, state.markers, state.marker_velocity);
+    stats.removed +=
+        advect_markers(model, field, dt, state.markers, state.marker_velocity, &ws.moving);
     stats.dropped += release_markers(model, ws.inflow_velocity, dt, state);
   }
   state.time += dt;

@@ -4,12 +4,10 @@
 
 namespace pbm {
 
-Real interpolate_component(const MacGrid& grid, const std::vector<Real>& u, int axis,
-                           const Vec3& x) {
+void component_stencil(const MacGrid& grid, int axis, const Vec3& x, int (&base)[3],
+                       Real (&frac)[3]) {
   // Grid coordinates in which the component's samples sit at integers: the faces of axis `axis`
   // at i * h (index i), the other axes' samples at the cells' centres (index j, centre j - 1/2).
-  int base[3];
-  Real frac[3];
   for (int a = 0; a < 3; ++a) {
     Real g = (x[a] - grid.origin[a]) / grid.h[a] + (a == axis ? 0.0 : 0.5);
     // Faces 0..n along the axis, cells 0..n+1 across it (the ghosts carry the walls' values).
@@ -22,6 +20,13 @@ Real interpolate_component(const MacGrid& grid, const std::vector<Real>& u, int 
     base[a] = b;
     frac[a] = last == 0 ? 0.0 : g - b;
   }
+}
+
+Real interpolate_component(const MacGrid& grid, const std::vector<Real>& u, int axis,
+                           const Vec3& x) {
+  int base[3];
+  Real frac[3];
+  component_stencil(grid, axis, x, base, frac);
   return blend_trilinear(grid, u, base, frac);
 }
 

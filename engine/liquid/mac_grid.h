@@ -69,6 +69,11 @@ struct MacField {
   }
 };
 
+// The 8 samples of component `axis` around world point x: from index base (per axis) to base + 1
+// at fractions frac (clamped to the grid; a 2D grid's thin axis has fraction 0).
+void component_stencil(const MacGrid& grid, int axis, const Vec3& x, int (&base)[3],
+                       Real (&frac)[3]);
+
 // The trilinear blend of `values` over the 8 samples from index base (per axis) to base + 1 at
 // fractions frac; a zero weight reads nothing (a 2D grid's thin axis).
 Real blend_trilinear(const MacGrid& grid, const std::vector<Real>& values, const int (&base)[3],

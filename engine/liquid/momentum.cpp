@@ -55,6 +55,7 @@ void update_momentum(const LiquidModel& model, const MomentumInput& in, MacField
   const int thin = model.thin_axis;
   const Real nu = model.def.viscosity;
   const bool book = model.def.advection == LiquidAdvection::book;
+  const bool carried = model.def.advection == LiquidAdvection::flip;  // by the markers
   const Real dt = in.dt;
   for (int a = 0; a < 3; ++a) {
     if (a == thin) continue;
@@ -73,7 +74,9 @@ void update_momentum(const LiquidModel& model, const MomentumInput& in, MacField
           const auto fs = static_cast<std::size_t>(f);
           const std::vector<Real>& prev = in.previous.u[a];
           Real convected = 0;
-          if (book) {
+          if (carried) {
+            convected = prev[fs];
+          } else if (book) {
             convected = prev[fs] + dt * book_convection(g, in.previous, a, f, thin);
           } else {
             // Backtrace by the midpoint rule through the substep's starting field.

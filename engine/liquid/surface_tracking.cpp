@@ -8,7 +8,9 @@
 namespace pbm {
 
 int advect_markers(const LiquidModel& model, const MacField& field, Real dt,
-                   std::vector<Vec3>& markers, const MovingSolids* moving) {
+                   std::vector<Vec3>& markers, std::vector<Vec3>& velocities,
+                   const MovingSolids* moving) {
+  const bool carried = !velocities.empty();
   const MacGrid& g = model.grid;
   std::size_t kept = 0;
   for (std::size_t m = 0; m < markers.size(); ++m) {
@@ -26,10 +28,12 @@ int advect_markers(const LiquidModel& model, const MacField& field, Real dt,
       if (f == CellFlag::outflow) continue;  // removed
       if (f == CellFlag::solid || (moving && moving->inside[k])) next = x;
     }
+    if (carried) velocities[kept] = velocities[m];
     markers[kept++] = next;
   }
   const int removed = static_cast<int>(markers.size() - kept);
   markers.resize(kept);
+  if (carried) velocities.resize(kept);
   return removed;
 }
 
@@ -82,6 +86,7 @@ int release_markers(const LiquidModel& model, const std::vector<Vec3>& inflow_ve
       if (model.thin_axis >= 0)
         x[model.thin_axis] = 0.5 * (inflow.box.min + inflow.box.max)[model.thin_axis];
       state.markers.push_back(x);
+      if (model.def.advection == LiquidAdvection::flip) state.marker_velocity.push_back(velocity);
     }
   }
   return dropped;

@@ -11,9 +11,11 @@ namespace pbm {
 
 // Moves every marker through the field by the midpoint rule; a marker that would enter a Solid
 // cell (the scene's, or one a moving solid covers) or leave the domain stays where it was; one
-// that enters an Outflow cell is removed. Returns how many were removed.
+// that enters an Outflow cell is removed, with its velocity when `velocities` holds one per
+// marker (advection flip; empty otherwise). Returns how many were removed.
 int advect_markers(const LiquidModel& model, const MacField& field, Real dt,
-                   std::vector<Vec3>& markers, const MovingSolids* moving = nullptr);
+                   std::vector<Vec3>& markers, std::vector<Vec3>& velocities,
+                   const MovingSolids* moving = nullptr);
 
 // Each inflow's markers for dt at its rate (or, at rate 0, at the marker density times its
 // volume flux), placed by a low-discrepancy sequence over its cells. A rate given scales with the

@@ -61,8 +61,10 @@ inline constexpr NameTable<SegmentShapeKind, 4> kSegmentShapeKindNames{
      {"capsule", SegmentShapeKind::capsule}}};
 inline constexpr NameTable<ImpulseFrame, 2> kImpulseFrameNames{
     {{"world", ImpulseFrame::world}, {"site", ImpulseFrame::site}}};
-inline constexpr NameTable<LiquidAdvection, 2> kLiquidAdvectionNames{
-    {{"book", LiquidAdvection::book}, {"semi_lagrangian", LiquidAdvection::semi_lagrangian}}};
+inline constexpr NameTable<LiquidAdvection, 3> kLiquidAdvectionNames{
+    {{"book", LiquidAdvection::book},
+     {"semi_lagrangian", LiquidAdvection::semi_lagrangian},
+     {"flip", LiquidAdvection::flip}}};
 inline constexpr NameTable<PressureSolver, 3> kPressureSolverNames{
     {{"relaxation", PressureSolver::relaxation},
      {"mic_pcg", PressureSolver::mic_pcg},

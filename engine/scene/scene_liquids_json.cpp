@@ -176,7 +176,13 @@ constexpr auto kLiquidFields = std::to_array<Field<LiquidDef>>({
     choice<&LiquidDef::advection, kLiquidAdvectionNames>(
         {.key = "advection",
          .description = "book: the explicit differences of (16.2); semi_lagrangian: a "
-                        "backtrace, unconditionally stable."}),
+                        "backtrace, unconditionally stable; flip: the markers carry the velocity "
+                        "(PIC/FLIP, markers only)."}),
+    value<&LiquidDef::flip_ratio>(
+        {.key = "flip_ratio",
+         .range = kUnitInterval,
+         .description = "With advection flip: the FLIP share of the markers' velocity update (1: "
+                        "FLIP, no dissipation; 0: PIC, smooth)."}),
     choice<&LiquidDef::solver, kPressureSolverNames>(
         {.key = "solver",
          .description = "The pressure solve: the book's relaxation (16.5)-(16.9), or conjugate "

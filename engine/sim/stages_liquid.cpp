@@ -302,11 +302,19 @@ void remove_covered_liquid(const Model& model, State& state, Workspace& ws) {
     const MovingSolids& moving = ws.liquids[l].moving;
     const MacGrid& g = model.liquids[l].grid;
     std::vector<Vec3>& markers = state.liquids[l].markers;
-    std::erase_if(markers, [&](const Vec3& x) {
-      const Eigen::Vector3i c = g.cell_of(x);
-      return g.interior(c.x(), c.y(), c.z()) &&
-             moving.inside[static_cast<std::size_t>(g.index(c.x(), c.y(), c.z()))];
-    });
+    std::vector<Vec3>& velocities = state.liquids[l].marker_velocity;  // empty unless flip
+    std::size_t kept = 0;
+    for (std::size_t m = 0; m < markers.size(); ++m) {
+      const Eigen::Vector3i c = g.cell_of(markers[m]);
+      if (g.interior(c.x(), c.y(), c.z()) &&
+          moving.inside[static_cast<std::size_t>(g.index(c.x(), c.y(), c.z()))]) {
+        continue;
+      }
+      if (!velocities.empty()) velocities[kept] = velocities[m];
+      markers[kept++] = markers[m];
+    }
+    markers.resize(kept);
+    if (!velocities.empty()) velocities.resize(kept);
   }
 }
 
