@@ -193,6 +193,10 @@ std::string frame_stats_json(const World& world, const FrameStats& s, long frame
                          {"markers_dropped", st.dropped},
                          {"solid_cells", st.solid_cells},
                          {"markers_pushed", st.pushed},
+                         {"spray", ls.spray},
+                         {"foam", ls.foam},
+                         {"spray_emitted", st.spray_emitted},
+                         {"foam_landed", st.foam_landed},
                          {"solve_seconds", st.solve_seconds}});
       if (!model.bodies.empty()) {
         const Vec3& f = ls.body_force;

@@ -76,8 +76,9 @@ int main(int argc, char** argv) {
                         "tradeoff: the scene JSON file; realtime: the folder of scenes");
   bench_cmd->add_option("--knobs", tradeoff.knobs,
                         "tradeoff: knobs to sweep, of dt,integrator,tolerance,resolution,contact "
-                        "and the figures' stiffness,restitution,gains,settling (default "
-                        "dt,integrator,resolution)");
+                        ", the figures' stiffness,restitution,gains,settling and the liquids' "
+                        "liquid_resolution,cfl,advection,pressure_solver,relaxation,epsilon,"
+                        "markers (default dt,integrator,resolution)");
   bench_cmd->add_option("--seconds", tradeoff.seconds,
                         "tradeoff, realtime: simulated time per run (2; realtime 10, at most the "
                         "scene's duration)");

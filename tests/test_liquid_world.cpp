@@ -118,10 +118,24 @@ TEST(LiquidWorld, ANanInTheGridStopsTheRunNamingTheLiquid) {
   EXPECT_NE(r.message.find("NaN"), std::string::npos) << r.message;
 }
 
-TEST(LiquidWorld, TheSnapshotDrawsTheMarkersAndFramesTheDomain) {
-  Simulation sim(parse_scene(tank_scene(true), "dam.json"));
+TEST(LiquidWorld, TheSnapshotDrawsTheSurfaceOrTheMarkersAndFramesTheDomain) {
+  // By default a marker liquid draws its surface: one translucent mesh named after it, closed
+  // around its markers.
+  Simulation surface(parse_scene(tank_scene(true), "dam.json"));
+  ASSERT_TRUE(advance_frame(surface).ok);
+  const draw::Snapshot drawn = make_snapshot(surface);
+  EXPECT_TRUE(drawn.points.empty());
+  ASSERT_EQ(drawn.meshes.size(), 1u);
+  EXPECT_EQ(drawn.meshes[0].name, surface.model.liquids[0].def.name);
+  EXPECT_LT(drawn.meshes[0].material.opacity, 1.0f);
+  EXPECT_GT(drawn.meshes[0].topology->triangles.size(), 100u);
+  // display "markers": the markers as points.
+  Scene scene = parse_scene(tank_scene(true), "dam.json");
+  scene.liquids[0].display = LiquidDisplay::markers;
+  Simulation sim(scene);
   ASSERT_TRUE(advance_frame(sim).ok);
   const draw::Snapshot snap = make_snapshot(sim);
+  EXPECT_TRUE(snap.meshes.empty());
   ASSERT_EQ(snap.points.size(), 1u);
   EXPECT_EQ(snap.points[0].positions.size(), sim.state.liquids[0].markers.size());
   EXPECT_EQ(snap.points[0].layer, draw::Layer::scene);

@@ -376,6 +376,76 @@ TEST(Tradeoff, TheFiguresPhysicsKnobs) {
   EXPECT_EQ(notes.size(), 4u);
 }
 
+// The liquids' knobs, each swept alone around the scene's setting against a reference at the
+// converged end of each (the finest grid and the smallest CFL number): a 2D tank released from a
+// step in its surface approaches the reference's volume, front and centre of mass as its grid
+// refines, and its centre as its CFL number falls (16.3); a knob without a liquid is left out.
+Scene released_step() {
+  Scene s;
+  s.name = "step";
+  s.solver.fps = 30;
+  LiquidDef liquid;
+  liquid.name = "step";
+  const Real thin = 1.0 / 32;
+  liquid.domain = {Vec3(0, 0, 0), Vec3(1, thin, 0.5)};
+  liquid.resolution = Eigen::Vector3i(32, 1, 16);
+  liquid.fluid.push_back({{Vec3(0, 0, 0), Vec3(0.5, thin, 0.3)}, Vec3::Zero()});
+  liquid.fluid.push_back({{Vec3(0.5, 0, 0), Vec3(1, thin, 0.2)}, Vec3::Zero()});
+  liquid.volume_correction = 0.2;
+  s.liquids.push_back(liquid);
+  return s;
+}
+
+TEST(Tradeoff, ALiquidConvergesAsItsGridRefinesAndItsCflFalls) {
+  const Scene scene = released_step();
+  std::vector<std::string> notes;
+  TradeoffOptions options;
+  options.seconds = 1;
+  options.knobs = default_knobs(scene, {"liquid_resolution", "cfl"}, notes);
+  EXPECT_TRUE(notes.empty());
+  const TradeoffReport report = run_tradeoff(scene, options, [](int, int, const std::string&) {});
+  EXPECT_EQ(report.reference.liquid_resolution, 2.0);
+  EXPECT_EQ(report.reference.cfl, 0.25);
+  // The scene's own CFL (0.5) is not run twice.
+  EXPECT_EQ(report.points.size(), 5u);
+  auto point = [&](Real resolution, Real cfl) -> const TradeoffPoint& {
+    for (const TradeoffPoint& p : report.points) {
+      if (p.setting.liquid_resolution == resolution && p.setting.cfl == cfl) return p;
+    }
+    ADD_FAILURE() << "no point at resolution " << resolution << " cfl " << cfl;
+    return report.points.front();
+  };
+  const TradeoffPoint& half = point(0.5, 0);
+  const TradeoffPoint& own = point(1, 0);
+  const TradeoffPoint& twice = point(2, 0);
+  const TradeoffPoint& cfl1 = point(1, 1.0);
+  const TradeoffPoint& cfl_quarter = point(1, 0.25);
+  for (const TradeoffPoint* p : {&half, &own, &twice, &cfl1, &cfl_quarter}) {
+    ASSERT_TRUE(p->ok) << p->setting.label() << ": " << p->message;
+    std::printf("%-40s volume %.4f, front %.4f m, centre %.4f m, top %.4f m, %.3f s\n",
+                p->setting.label().c_str(), p->liquid_volume, p->liquid_front, p->liquid_centre,
+                p->liquid_height, p->wall_seconds);
+  }
+  EXPECT_LT(own.liquid_volume, half.liquid_volume);
+  EXPECT_LT(twice.liquid_volume, own.liquid_volume);
+  EXPECT_LT(own.liquid_front, half.liquid_front);
+  EXPECT_LT(twice.liquid_front, own.liquid_front);
+  EXPECT_LT(own.liquid_centre, half.liquid_centre);
+  EXPECT_LT(twice.liquid_centre, own.liquid_centre);
+  EXPECT_LT(cfl_quarter.liquid_centre, own.liquid_centre);
+  EXPECT_LT(own.liquid_centre, cfl1.liquid_centre);
+  // The knob applied: cells per axis doubled, the thin axis left one cell thick.
+  TradeoffSetting doubled;
+  doubled.liquid_resolution = 2;
+  EXPECT_EQ(apply_setting(scene, doubled).liquids[0].resolution, Eigen::Vector3i(64, 1, 32));
+  EXPECT_NE(doubled.label().find("cells 2x"), std::string::npos);
+  // Without a liquid: left out with a note.
+  notes.clear();
+  EXPECT_TRUE(default_knobs(spinning_ball(), {"cfl"}, notes).cfl.empty());
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_NE(notes[0].find("no liquid"), std::string::npos);
+}
+
 TEST(Tradeoff, PlotDrawsItsPointsFrontAndHighlight) {
   LogLogPlot plot;
   plot.title = "title";

@@ -117,6 +117,15 @@ struct LiquidDef {
   // markers a cell without it, under 1% at 0.2), at some cost in the waves' period (0.05 makes
   // the sloshing period's error grow under refinement).
   Real volume_correction = 0;
+  // Spray and foam (liquid/spray.h; markers only): spray leaves Surface cells whose liquid rises
+  // faster than spray_speed [m/s] (0: no spray), spray_rate particles per such cell per second,
+  // flying with the quadratic air drag k = spray_drag [1/m] (terminal speed sqrt(g / k)); foam
+  // lasts foam_lifetime [s]. At most max_spray of each.
+  Real spray_speed = 0;
+  Real spray_rate = 200;
+  Real spray_drag = 0.1;
+  Real foam_lifetime = 2;
+  int max_spray = 100000;
 };
 
 }  // namespace pbm

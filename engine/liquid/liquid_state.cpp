@@ -158,6 +158,12 @@ void hash_liquid_state(const LiquidState& s, std::uint64_t& h) {
   mix(s.pressure.data(), sizeof(Real) * s.pressure.size());
   mix(s.markers.data(), sizeof(Vec3) * s.markers.size());
   mix(s.marker_velocity.data(), sizeof(Vec3) * s.marker_velocity.size());
+  mix(s.spray.data(), sizeof(Vec3) * s.spray.size());
+  mix(s.spray_velocity.data(), sizeof(Vec3) * s.spray_velocity.size());
+  mix(s.foam.data(), sizeof(Vec3) * s.foam.size());
+  mix(s.foam_age.data(), sizeof(Real) * s.foam_age.size());
+  mix(&s.spray_total, sizeof s.spray_total);
+  mix(&s.spray_owed, sizeof s.spray_owed);
   mix(s.height.data(), sizeof(Real) * s.height.size());
   mix(s.released.data(), sizeof(Real) * s.released.size());
   mix(&s.released_total, sizeof s.released_total);
@@ -169,7 +175,9 @@ std::size_t liquid_state_bytes(const LiquidState& s) {
   std::size_t bytes = sizeof s;
   for (const auto& c : s.velocity.u) bytes += sizeof(Real) * c.size();
   return bytes + sizeof(Real) * (s.pressure.size() + s.height.size() + s.released.size()) +
-         sizeof(Vec3) * (s.markers.size() + s.marker_velocity.size());
+         sizeof(Vec3) * (s.markers.size() + s.marker_velocity.size() + s.spray.size() +
+                         s.spray_velocity.size() + s.foam.size()) +
+         sizeof(Real) * s.foam_age.size();
 }
 
 }  // namespace pbm

@@ -17,6 +17,12 @@ struct LiquidState {
   std::vector<Vec3> markers;   // marker particles (16.3.1) [m]
   // Each marker's velocity with advection flip (empty otherwise) [m/s].
   std::vector<Vec3> marker_velocity;
+  // Spray in the air and foam on the surface (liquid/spray.h) [m], [m/s], [s].
+  std::vector<Vec3> spray, spray_velocity;
+  std::vector<Vec3> foam;
+  std::vector<Real> foam_age;
+  std::uint64_t spray_total = 0;     // spray ever emitted: seeds where the next one goes
+  Real spray_owed = 0;               // a fraction of a particle owed to the next substep
   std::vector<Real> height;          // surface height per column (16.3.3) [m], height field only
   std::vector<Real> released;        // per inflow: markers owed but not yet released (a fraction)
   std::uint64_t released_total = 0;  // markers ever released: seeds where the next one goes

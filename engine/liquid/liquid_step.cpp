@@ -8,6 +8,7 @@
 #include "liquid/cell_labels.h"
 #include "liquid/momentum.h"
 #include "liquid/particle_transfer.h"
+#include "liquid/spray.h"
 #include "liquid/surface_tracking.h"
 
 namespace pbm {
@@ -155,6 +156,12 @@ void liquid_substep(const LiquidModel& model, const LiquidInputs& inputs, Real d
     stats.removed +=
         advect_markers(model, field, dt, state.markers, state.marker_velocity, &ws.moving);
     stats.dropped += release_markers(model, ws.inflow_velocity, dt, state);
+    if (model.def.spray_speed > 0) {
+      SprayStats spray;
+      advance_spray(model, field, inputs.gravity, dt, ws, state, spray);
+      stats.spray_emitted += spray.emitted;
+      stats.foam_landed += spray.landed;
+    }
   }
   state.time += dt;
   stats.substeps += 1;

@@ -22,6 +22,8 @@ struct LiquidStepStats {
   int dropped = 0;              // markers an inflow could not release (the capacity)
   int solid_cells = 0;          // cells moving solids covered at the last substep
   int pushed = 0;               // markers pushed out of them (liquid/moving_solids.h)
+  int spray_emitted = 0;        // spray particles released (liquid/spray.h)
+  int foam_landed = 0;          // spray fallen back onto the liquid as foam
   double solve_seconds = 0;     // wall time in the pressure solves (a cost, never a result)
 };
 

@@ -237,6 +237,32 @@ constexpr auto kLiquidFields = std::to_array<Field<LiquidDef>>({
          .range = kUnitInterval,
          .description = "Fraction of the markers' excess density the solve pushes apart per "
                         "substep (0: div u = 0 exactly, the book's)."}),
+    value<&LiquidDef::spray_speed>(
+        {.key = "spray_speed",
+         .unit = "m/s",
+         .range = kNonNegative,
+         .description = "Spray leaves Surface cells whose liquid rises faster than this (markers "
+                        "only); 0: no spray or foam."}),
+    value<&LiquidDef::spray_rate>({.key = "spray_rate",
+                                   .unit = "1/s",
+                                   .range = kNonNegative,
+                                   .limit = 1e6,
+                                   .description = "Spray particles per rising cell per second."}),
+    value<&LiquidDef::spray_drag>(
+        {.key = "spray_drag",
+         .unit = "1/m",
+         .range = kNonNegative,
+         .limit = 1e3,
+         .description = "k of the spray's air drag a = g - k |v| v: terminal speed sqrt(g / k)."}),
+    value<&LiquidDef::foam_lifetime>({.key = "foam_lifetime",
+                                      .unit = "s",
+                                      .range = kNonNegative,
+                                      .limit = 1e4,
+                                      .description = "How long foam rides the surface."}),
+    value<&LiquidDef::max_spray>({.key = "max_spray",
+                                  .range = {.lo = 0},
+                                  .limit = 10000000,
+                                  .description = "The most spray particles, and of foam."}),
 });
 
 // Where a box of the liquid lies wholly inside its domain.

@@ -40,10 +40,11 @@ struct FigureFrameStats {
 // (the frame's, with any attempt the guard rejected).
 struct LiquidFrameStats {
   LiquidStepStats step;
-  Real volume = 0;     // Full cells whole, Surface cells by their fill [m^3]
-  int markers = 0;     // marker particles (16.3.1); 0 with a height field
-  Real kinetic = 0;    // 1/2 rho |u|^2 over the liquid's cells, u at their centres [J]
-  Real max_speed = 0;  // the fastest face of a liquid cell [m/s]
+  Real volume = 0;          // Full cells whole, Surface cells by their fill [m^3]
+  int markers = 0;          // marker particles (16.3.1); 0 with a height field
+  int spray = 0, foam = 0;  // spray and foam particles (liquid/spray.h)
+  Real kinetic = 0;         // 1/2 rho |u|^2 over the liquid's cells, u at their centres [J]
+  Real max_speed = 0;       // the fastest face of a liquid cell [m/s]
   // Its push on the bodies at the measured state (sim/liquid_body_loads.h): buoyancy (16.15)
   // and drag [N], and the area of their surfaces under its surface [m^2].
   Vec3 body_force = Vec3::Zero();

@@ -22,6 +22,8 @@ const draw::Material kWaterMaterial{{0.16f, 0.45f, 0.85f}, 0.15f};
 const draw::Material kWaterSurfaceMaterial{{0.16f, 0.45f, 0.85f}, 0.15f, 0.7f};
 const draw::Material kLiquidSolidMaterial{{0.5f, 0.47f, 0.42f}, 0.9f};
 const draw::Vec3f kMarkerColor{0.25f, 0.55f, 0.95f};
+const draw::Vec3f kSprayColor{0.92f, 0.95f, 1.0f};
+const draw::Vec3f kFoamColor{1.0f, 1.0f, 1.0f};
 const draw::Vec3f kDomainColor{0.35f, 0.6f, 0.9f};
 
 // What drives liquid l from `drive`, evaluated at time t: gravity, and the tracks of 16.6 with
@@ -274,6 +276,8 @@ void measure_liquids(const Model& model, const Inputs& inputs, const State& stat
     }
     out.volume = liquid_volume(m, w.flags, w.fill);
     out.markers = static_cast<int>(s.markers.size());
+    out.spray = static_cast<int>(s.spray.size());
+    out.foam = static_cast<int>(s.foam.size());
     const MacGrid& g = m.grid;
     Real sum = 0, fastest = 0;
     for (int c = 0; c < g.size; ++c) {
@@ -413,6 +417,15 @@ void add_liquid_drawables(const Model& model, const Inputs& inputs, const State&
                                .positions = std::move(positions),
                                .topology = std::move(topology),
                                .material = kWaterSurfaceMaterial});
+      }
+      // Spray and foam (liquid/spray.h), white points in the picture.
+      for (const std::vector<Vec3>* particles : {&s.spray, &s.foam}) {
+        if (particles->empty()) continue;
+        draw::Points& points = snap.points.emplace_back();
+        for (const Vec3& x : *particles) points.positions.push_back(x.cast<float>());
+        points.colors.assign(particles->size(), particles == &s.spray ? kSprayColor : kFoamColor);
+        points.size = particles == &s.spray ? 2.5f : 3.5f;
+        points.layer = draw::Layer::scene;
       }
       if (display == LiquidDisplay::surface) continue;
       // The marker particles are the liquid (16.3.1): drawn in the picture, not as an overlay.

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "liquid/cell_labels.h"
 #include "scene/scene_enum_names.h"
 #include "sim/simulation.h"
 
@@ -21,11 +22,56 @@ struct Trajectory {
   Real largest_energy = 0;                 // kinetic + elastic over frames
   Real violation = 0;
   Real depth = 0;  // the deepest contact over the frames [m]
+  // [frame][liquid]: volume [m^3], centre of mass, front and highest point [m].
+  struct LiquidSample {
+    Real volume = 0;
+    Vec3 centre = Vec3::Zero();
+    Real front = 0, top = 0;
+  };
+  std::vector<std::vector<LiquidSample>> liquids;
   double wall_seconds = 0;
   long substeps = 0, evaluations = 0, retries = 0;
   bool ok = true;
   std::string message;
 };
+
+// A liquid's centre of mass, its reach along the grid's first horizontal axis and its highest
+// point: from its markers, or its height field's columns.
+Trajectory::LiquidSample sample_liquid(const LiquidModel& m, const LiquidState& s, Real volume) {
+  Trajectory::LiquidSample out;
+  out.volume = volume;
+  const MacGrid& g = m.grid;
+  const ColumnAxes axes = column_axes(m);
+  out.front = -1e300;
+  out.top = -1e300;
+  if (m.def.surface == SurfaceMethod::markers) {
+    for (const Vec3& x : s.markers) {
+      out.centre += x;
+      out.front = std::max(out.front, x[axes.h0]);
+      out.top = std::max(out.top, x[axes.v]);
+    }
+    if (!s.markers.empty()) out.centre /= static_cast<Real>(s.markers.size());
+    return out;
+  }
+  const Real bottom = g.origin[axes.v];
+  Real weight = 0;
+  const int n0 = g.n[axes.h0];
+  for (std::size_t c = 0; c < s.height.size(); ++c) {
+    const Real depth = s.height[c] - bottom;
+    Vec3 x = g.centre(1, 1, 1);
+    x[axes.h0] = g.origin[axes.h0] + (static_cast<int>(c) % n0 + 0.5) * g.h[axes.h0];
+    x[axes.h1] = g.origin[axes.h1] + (static_cast<int>(c) / n0 + 0.5) * g.h[axes.h1];
+    x[axes.v] = bottom + 0.5 * depth;
+    out.centre += depth * x;
+    weight += depth;
+    // A column holding liquid (deeper than a hundredth of a cell) reaches its far edge.
+    if (depth > 0.01 * g.h[axes.v])
+      out.front = std::max(out.front, x[axes.h0] + 0.5 * g.h[axes.h0]);
+    out.top = std::max(out.top, s.height[c]);
+  }
+  if (weight > 0) out.centre /= weight;
+  return out;
+}
 
 Trajectory record(const Scene& scene, Real seconds, const std::atomic<bool>* cancel) {
   Trajectory t;
@@ -77,6 +123,12 @@ Trajectory record(const Scene& scene, Real seconds, const std::atomic<bool>* can
           at += 3;
         }
       }
+      std::vector<Trajectory::LiquidSample> liquids;
+      for (std::size_t l = 0; l < sim.model.liquids.size(); ++l) {
+        liquids.push_back(
+            sample_liquid(sim.model.liquids[l], sim.state.liquids[l], s.liquids[l].volume));
+      }
+      t.liquids.push_back(std::move(liquids));
       t.centres.push_back(std::move(centres));
       t.shapes.push_back(std::move(shapes));
       t.nodes.push_back(std::move(nodes));
@@ -129,6 +181,17 @@ void compare(const Trajectory& run, const Trajectory& ref, TradeoffPoint& point)
     }
     point.energy_error =
         std::max(point.energy_error, std::abs(run.total_energy[f] - ref.total_energy[f]) / scale);
+    for (std::size_t l = 0; l < run.liquids[f].size() && l < ref.liquids[f].size(); ++l) {
+      const Trajectory::LiquidSample& a = run.liquids[f][l];
+      const Trajectory::LiquidSample& b = ref.liquids[f][l];
+      if (b.volume > 0) {
+        point.liquid_volume =
+            std::max(point.liquid_volume, std::abs(a.volume - b.volume) / b.volume);
+      }
+      point.liquid_centre = std::max(point.liquid_centre, (a.centre - b.centre).norm());
+      point.liquid_front = std::max(point.liquid_front, std::abs(a.front - b.front));
+      point.liquid_height = std::max(point.liquid_height, std::abs(a.top - b.top));
+    }
   }
   point.node_rms = nodes_match && node_count > 0 ? std::sqrt(node_sum / node_count) : -1;
 }
@@ -159,6 +222,28 @@ std::string TradeoffSetting::label() const {
   }
   if (settling != 1) {
     std::snprintf(text, sizeof text, " t_s %gx", settling);
+    label += text;
+  }
+  if (liquid_resolution != 1) {
+    std::snprintf(text, sizeof text, " cells %gx", liquid_resolution);
+    label += text;
+  }
+  if (cfl > 0) {
+    std::snprintf(text, sizeof text, " cfl %g", cfl);
+    label += text;
+  }
+  if (advection) label += std::string(" ") + name_of(kLiquidAdvectionNames, *advection);
+  if (pressure_solver) label += std::string(" ") + name_of(kPressureSolverNames, *pressure_solver);
+  if (relaxation > 0) {
+    std::snprintf(text, sizeof text, " beta0 %g", relaxation);
+    label += text;
+  }
+  if (epsilon > 0) {
+    std::snprintf(text, sizeof text, " eps %g", epsilon);
+    label += text;
+  }
+  if (markers_per_axis > 0) {
+    std::snprintf(text, sizeof text, " markers %d", markers_per_axis);
     label += text;
   }
   return label;
@@ -257,11 +342,56 @@ TradeoffKnobs default_knobs(const Scene& scene, const std::vector<std::string>& 
       } else {
         notes.push_back("settling left out: no figure has an MRAC controller (t_s is MRAC's)");
       }
+    } else if (name == "liquid_resolution" || name == "cfl" || name == "advection" ||
+               name == "pressure_solver" || name == "relaxation" || name == "epsilon" ||
+               name == "markers") {
+      if (scene.liquids.empty()) {
+        notes.push_back(name + " left out: the scene has no liquid");
+        continue;
+      }
+      bool markers = false;
+      for (const LiquidDef& liquid : scene.liquids) {
+        markers |= liquid.surface == SurfaceMethod::markers;
+      }
+      if (name == "liquid_resolution") {
+        knobs.liquid_resolution = {0.5, 1.0, 2.0};
+      } else if (name == "cfl") {
+        knobs.cfl = {1.0, 0.5, 0.25};
+      } else if (name == "advection") {
+        knobs.advection = {LiquidAdvection::book, LiquidAdvection::semi_lagrangian};
+        if (markers) {
+          knobs.advection.push_back(LiquidAdvection::flip);
+        } else {
+          notes.push_back("advection flip left out: no liquid has markers to carry it");
+        }
+      } else if (name == "pressure_solver") {
+        knobs.pressure_solver = {PressureSolver::relaxation, PressureSolver::mic_pcg,
+                                 PressureSolver::mgpcg};
+      } else if (name == "relaxation") {
+        bool relaxed = false;
+        for (const LiquidDef& liquid : scene.liquids) {
+          relaxed |= liquid.solver == PressureSolver::relaxation;
+        }
+        if (relaxed) {
+          knobs.relaxation = {1.2, 1.5, 1.9};
+        } else {
+          notes.push_back(
+              "relaxation left out: beta_0 is the relaxation solver's, which no "
+              "liquid uses (sweep pressure_solver)");
+        }
+      } else if (name == "epsilon") {
+        knobs.epsilon = {1e-3, 1e-4, 1e-5};
+      } else if (markers) {
+        knobs.markers_per_axis = {1, 2, 3};
+      } else {
+        notes.push_back("markers left out: no liquid has markers");
+      }
     } else {
       throw Error("", "--knobs",
                   "unknown knob '" + name +
                       "' (dt, integrator, tolerance, resolution, contact, stiffness, "
-                      "restitution, gains, settling)");
+                      "restitution, gains, settling, liquid_resolution, cfl, advection, "
+                      "pressure_solver, relaxation, epsilon, markers)");
     }
   }
   return knobs;
@@ -303,6 +433,26 @@ Scene apply_setting(const Scene& scene, const TradeoffSetting& setting) {
       m.beta *= setting.gains;
       m.settling_time *= setting.settling;
     }
+  }
+  for (LiquidDef& liquid : s.liquids) {
+    if (setting.liquid_resolution != 1) {
+      // The cells per axis, and with them the domain's grid; a 2D liquid stays one cell thick.
+      for (int a = 0; a < 3; ++a) {
+        if (liquid.resolution[a] == 1) continue;
+        liquid.resolution[a] = std::max(
+            2, static_cast<int>(std::lround(liquid.resolution[a] * setting.liquid_resolution)));
+      }
+    }
+    if (setting.cfl > 0) liquid.cfl = setting.cfl;
+    // flip needs markers: a height field keeps its own advection.
+    if (setting.advection &&
+        (*setting.advection != LiquidAdvection::flip || liquid.surface == SurfaceMethod::markers)) {
+      liquid.advection = *setting.advection;
+    }
+    if (setting.pressure_solver) liquid.solver = *setting.pressure_solver;
+    if (setting.relaxation > 0) liquid.relaxation = setting.relaxation;
+    if (setting.epsilon > 0) liquid.tolerance = setting.epsilon;
+    if (setting.markers_per_axis > 0) liquid.markers_per_axis = setting.markers_per_axis;
   }
   return s;
 }
@@ -358,6 +508,43 @@ TradeoffReport run_tradeoff(const Scene& scene, const TradeoffOptions& options,
               settings.push_back(s);
             }
         }
+  // The liquids' knobs, one at a time around the scene's own setting (the factorial's current
+  // point, or its first).
+  TradeoffSetting centre = settings.front();
+  for (const TradeoffSetting& s : settings) {
+    if (s.current) centre = s;
+  }
+  // A value every liquid already has is the centre itself, run once.
+  auto one_liquid_knob = [&](bool already, auto apply) {
+    if (already) return;
+    TradeoffSetting s = centre;
+    apply(s);
+    s.current = false;
+    settings.push_back(s);
+  };
+  auto every_liquid = [&](auto has) {
+    return std::all_of(scene.liquids.begin(), scene.liquids.end(), has);
+  };
+  for (Real r : k.liquid_resolution)
+    one_liquid_knob(r == 1, [&](TradeoffSetting& s) { s.liquid_resolution = r; });
+  for (Real c : k.cfl)
+    one_liquid_knob(every_liquid([&](const LiquidDef& l) { return l.cfl == c; }),
+                    [&](TradeoffSetting& s) { s.cfl = c; });
+  for (LiquidAdvection a : k.advection)
+    one_liquid_knob(every_liquid([&](const LiquidDef& l) { return l.advection == a; }),
+                    [&](TradeoffSetting& s) { s.advection = a; });
+  for (PressureSolver p : k.pressure_solver)
+    one_liquid_knob(every_liquid([&](const LiquidDef& l) { return l.solver == p; }),
+                    [&](TradeoffSetting& s) { s.pressure_solver = p; });
+  for (Real b : k.relaxation)
+    one_liquid_knob(every_liquid([&](const LiquidDef& l) { return l.relaxation == b; }),
+                    [&](TradeoffSetting& s) { s.relaxation = b; });
+  for (Real e : k.epsilon)
+    one_liquid_knob(every_liquid([&](const LiquidDef& l) { return l.tolerance == e; }),
+                    [&](TradeoffSetting& s) { s.epsilon = e; });
+  for (int m : k.markers_per_axis)
+    one_liquid_knob(every_liquid([&](const LiquidDef& l) { return l.markers_per_axis == m; }),
+                    [&](TradeoffSetting& s) { s.markers_per_axis = m; });
   report.reference.dt = *std::min_element(k.dt.begin(), k.dt.end());
   report.reference.integrator = IntegratorKind::rk45;
   report.reference.tolerance = options.reference_tolerance;
@@ -365,6 +552,20 @@ TradeoffReport run_tradeoff(const Scene& scene, const TradeoffOptions& options,
   // The three-point rule, the more accurate, when the sweep compares the rules.
   for (const std::optional<ContactQuadrature>& rule : k.contacts) {
     if (rule) report.reference.contact = ContactQuadrature::three_point;
+  }
+  // The liquids' converged end of each knob swept: the finest grid, the smallest CFL and epsilon,
+  // the most markers (advection and solver stay the scene's).
+  if (!k.liquid_resolution.empty()) {
+    report.reference.liquid_resolution =
+        *std::max_element(k.liquid_resolution.begin(), k.liquid_resolution.end());
+  }
+  if (!k.cfl.empty()) report.reference.cfl = *std::min_element(k.cfl.begin(), k.cfl.end());
+  if (!k.epsilon.empty()) {
+    report.reference.epsilon = *std::min_element(k.epsilon.begin(), k.epsilon.end());
+  }
+  if (!k.markers_per_axis.empty()) {
+    report.reference.markers_per_axis =
+        *std::max_element(k.markers_per_axis.begin(), k.markers_per_axis.end());
   }
   report.references = static_cast<int>(physics.size());
   const int total = static_cast<int>(settings.size()) + report.references;
@@ -435,8 +636,10 @@ void mark_pareto_front(std::vector<TradeoffPoint>& points) {
     if (!p.ok) continue;
     for (const TradeoffPoint& q : points) {
       if (&q == &p || !q.ok) continue;
-      const bool no_worse = q.wall_seconds <= p.wall_seconds && q.centre_error <= p.centre_error;
-      const bool better = q.wall_seconds < p.wall_seconds || q.centre_error < p.centre_error;
+      const bool no_worse =
+          q.wall_seconds <= p.wall_seconds && q.accuracy_error() <= p.accuracy_error();
+      const bool better =
+          q.wall_seconds < p.wall_seconds || q.accuracy_error() < p.accuracy_error();
       if (no_worse && better) {
         p.pareto = false;
         break;

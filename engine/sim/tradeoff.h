@@ -3,7 +3,11 @@
 // tolerance, mesh resolution), each run's error against the reference at matched frame times
 // and its cost. `pbm bench tradeoff` writes it as CSV and a plot; the studio's trade panel shows
 // the same numbers for the open scene. Figures' segments count as centres; later subsystems add
-// their error columns here (liquid volume).
+// their error columns here: the liquids' volume, centre, front and surface height.
+//
+// The liquids' knobs (resolution, CFL, advection, pressure solver, beta_0, epsilon, marker
+// density) are swept one at a time around the scene's setting: a factorial of seven knobs would
+// be thousands of runs.
 //
 // The figures' physics knobs (contact stiffness, restitution, controller gains, t_s) change the
 // answer, not only its error: each of their settings gets a converged reference of its own, its
@@ -12,6 +16,7 @@
 // it changes.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <optional>
 #include <string>
@@ -40,6 +45,16 @@ struct TradeoffSetting {
   // kept), MRAC's alpha and beta (15.16), (15.17) times this; the mocap servos' alike;
   Real gains = 1;
   Real settling = 1;  // MRAC's t_s times this (15.11): lambda = 4 / t_s
+  // Every liquid's knobs (LiquidDef; 1, 0 and unset: the scene's own): its cells per axis times
+  // liquid_resolution (a 2D liquid's thin axis stays one cell thick), cfl, advection, pressure
+  // solver, relaxation beta_0 (16.7), tolerance epsilon and markers_per_axis.
+  Real liquid_resolution = 1;
+  Real cfl = 0;
+  std::optional<LiquidAdvection> advection;
+  std::optional<PressureSolver> pressure_solver;
+  Real relaxation = 0;
+  Real epsilon = 0;
+  int markers_per_axis = 0;
   // The physics this setting simulates: its stiffness, restitution, gains and settling.
   bool same_physics(const TradeoffSetting& other) const;
   bool scenes_physics() const;
@@ -66,7 +81,15 @@ struct TradeoffPoint {
   // references; 0 for the scene's physics): what a physics knob changes, apart from the error.
   Real physics_centre = 0;  // [m], as centre_error
   Real physics_joint = 0;   // [rad], as joint_error
-  bool pareto = false;      // no other point is both faster and more accurate (centre error)
+  // The liquids' (0 without liquids), largest over frames and liquids against the reference:
+  Real liquid_volume = 0;  // |V - V_ref| / V_ref
+  Real liquid_centre = 0;  // its centre of mass [m]
+  Real liquid_front = 0;   // its farthest reach along the grid's first horizontal axis [m]
+  Real liquid_height = 0;  // its highest point [m]
+  // No other point is both faster and more accurate (the larger of the centre errors of bodies
+  // and liquids).
+  bool pareto = false;
+  Real accuracy_error() const { return std::max(centre_error, liquid_centre); }
 };
 
 struct TradeoffKnobs {
@@ -81,6 +104,15 @@ struct TradeoffKnobs {
   std::vector<std::optional<Real>> restitution;
   std::vector<Real> gains;
   std::vector<Real> settling;
+  // The liquids' (TradeoffSetting), each swept alone around the scene's setting; empty: the
+  // scene's own.
+  std::vector<Real> liquid_resolution;
+  std::vector<Real> cfl;
+  std::vector<LiquidAdvection> advection;
+  std::vector<PressureSolver> pressure_solver;
+  std::vector<Real> relaxation;
+  std::vector<Real> epsilon;
+  std::vector<int> markers_per_axis;
 };
 
 struct TradeoffOptions {
@@ -105,8 +137,11 @@ struct TradeoffReport {
 // restitution the scene's and 0, 0.5, 1, gains and settling 1/2, 1 and 2 times. Resolution is
 // left out (with a note) when a body's mass is given per node (`nodal_mass`): refining it
 // changes the physics; contact, when no body is local (only local bodies have contact points);
-// the figures' knobs, when no figure has what they act on. Throws pbm::Error naming an unknown
-// knob.
+// the figures' knobs, when no figure has what they act on. The liquids' (liquid_resolution,
+// cfl, advection, pressure_solver, relaxation, epsilon, markers): resolution 1/2, 1 and 2 times,
+// CFL 1, 1/2, 1/4, every advection (flip with markers only), every pressure solver, beta_0 1.2,
+// 1.5, 1.9 (with the relaxation solver), epsilon 1e-3 to 1e-5, 1 to 3 markers per axis (markers
+// only); left out with a note without a liquid. Throws pbm::Error naming an unknown knob.
 TradeoffKnobs default_knobs(const Scene& scene, const std::vector<std::string>& names,
                             std::vector<std::string>& notes);
 
