@@ -34,6 +34,7 @@ using DeleteTexturesProc = void(APIENTRYP)(GLsizei n, const GLuint* textures);
   X(PFNGLCULLFACEPROC, CullFace)                                             \
   X(PolygonOffsetProc, PolygonOffset)                                        \
   X(PFNGLBLENDFUNCPROC, BlendFunc)                                           \
+  X(PFNGLBLENDFUNCSEPARATEPROC, BlendFuncSeparate)                           \
   X(PFNGLBLENDEQUATIONPROC, BlendEquation)                                   \
   X(PFNGLCREATESHADERPROC, CreateShader)                                     \
   X(PFNGLSHADERSOURCEPROC, ShaderSource)                                     \

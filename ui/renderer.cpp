@@ -325,7 +325,9 @@ void Renderer::render(const draw::Snapshot& s, const Camera& camera, const Rende
     if (!translucent) {
       r.use_surface(view_proj, light, camera, o.shadows);
       gl.Enable(GL_BLEND);
-      gl.BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+      // The picture's alpha stays 1: the studio's window composes its framebuffer by it (as
+      // premultiplied colour), so a blended alpha below 1 showed as false colours there.
+      gl.BlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
       gl.DepthMask(GL_FALSE);
       translucent = true;
     }
