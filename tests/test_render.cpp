@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -365,6 +366,52 @@ TEST(Render, BadOutputAndOptionsExit2BeforeAnyWork) {
   EXPECT_EQ(missing.code, 2);
   EXPECT_NE(missing.output.find("/no/such/scene.json"), std::string::npos);
   EXPECT_FALSE(fs::exists(fresh));
+}
+
+}  // namespace
+}  // namespace pbm
+
+namespace pbm {
+namespace {
+
+// A translucent solid (Material::opacity < 1, a liquid's surface) shows what lies behind it,
+// blended by its opacity; at opacity 1 it hides it.
+TEST(Render, ATranslucentSolidShowsWhatIsBehindIt) {
+  OsmesaContext context;
+  Renderer renderer(context.functions());
+  RenderOptions options;
+  options.width = 64;
+  options.height = 64;
+  options.shadows = false;
+  const Camera camera =
+      camera_from_view({.position = {0, -5, 0}, .target = {0, 0, 0}, .up = {0, 0, 1}, .fov = 30});
+  // opacity < 0: no front box.
+  auto centre_pixel = [&](float opacity) {
+    draw::Snapshot snap;
+    snap.primitives.push_back(
+        {.center = {0, 1, 0}, .half_size = {1, 0.1f, 1}, .material = {{0.9f, 0.05f, 0.05f}, 1.0f}});
+    if (opacity >= 0) {
+      snap.primitives.push_back({.center = {0, -1, 0},
+                                 .half_size = {0.5f, 0.1f, 0.5f},
+                                 .material = {{0.05f, 0.05f, 0.9f}, 1.0f, opacity}});
+    }
+    renderer.render(snap, camera, options);
+    std::vector<unsigned char> rgb;
+    renderer.read_rgb(rgb);
+    const std::size_t k = 3 * (32 * 64 + 32);
+    return std::array<int, 3>{rgb[k], rgb[k + 1], rgb[k + 2]};
+  };
+  const std::array<int, 3> back = centre_pixel(-1), opaque = centre_pixel(1.0f),
+                           half = centre_pixel(0.5f);
+  std::printf(
+      "centre pixel: back alone (%d, %d, %d), opaque front (%d, %d, %d), "
+      "half-transparent front (%d, %d, %d)\n",
+      back[0], back[1], back[2], opaque[0], opaque[1], opaque[2], half[0], half[1], half[2]);
+  EXPECT_GT(opaque[2], 3 * opaque[0]);  // the blue front box hides the red one
+  EXPECT_GT(back[0], 3 * back[2]);
+  // The ray crosses the front box's two faces (no culling), each blending half: a quarter of the
+  // back box shows through, in display values.
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(half[c], 0.25 * back[c] + 0.75 * opaque[c], 2.0) << c;
 }
 
 }  // namespace
