@@ -98,21 +98,60 @@ void capture_body_surfaces(const Model& model, const State& state, Workspace& ws
 
 // The interior cells of liquid m whose centres lie inside an obstacle placed as `obstacles` are
 // (a plane's half-space, a box, a mesh), with the obstacle's velocity there.
-void collect_obstacle_cells(const LiquidModel& m, const std::vector<ObstacleModel>& obstacles,
-                            std::vector<SolidCell>& out) {
-  out.clear();
-  if (obstacles.empty()) return;
+// The first obstacle no track moves that holds each cell's centre (-1: none).
+void find_static_obstacle_cells(const LiquidModel& m, const std::vector<ObstacleModel>& obstacles,
+                                std::vector<int>& first) {
   const MacGrid& g = m.grid;
+  first.assign(static_cast<std::size_t>(g.size), -1);
   for (int k = 1; k <= g.n.z(); ++k) {
     for (int j = 1; j <= g.n.y(); ++j) {
       for (int i = 1; i <= g.n.x(); ++i) {
         const int c = g.index(i, j, k);
         if (m.fixed[static_cast<std::size_t>(c)] != CellFlag::empty) continue;
         const Vec3 x = g.centre(i, j, k);
-        for (const ObstacleModel& o : obstacles) {
+        for (std::size_t o = 0; o < obstacles.size(); ++o) {
           Vec3 normal;
-          if (signed_distance(o, x, normal) < 0) {
-            out.push_back({c, o.velocity_at(x)});
+          if (!obstacles[o].moving && signed_distance(obstacles[o], x, normal) < 0) {
+            first[static_cast<std::size_t>(c)] = static_cast<int>(o);
+            break;
+          }
+        }
+      }
+    }
+  }
+}
+
+// The cells the obstacles cover now, each with the velocity of the first obstacle (in the
+// scene's order) holding its centre: the static ones read from `first_static`, the moving ones
+// tested where they are.
+void collect_obstacle_cells(const LiquidModel& m, const std::vector<ObstacleModel>& obstacles,
+                            const std::vector<int>& first_static, std::vector<SolidCell>& out) {
+  out.clear();
+  if (obstacles.empty()) return;
+  const bool any_moving = std::any_of(obstacles.begin(), obstacles.end(),
+                                      [](const ObstacleModel& o) { return o.moving; });
+  const MacGrid& g = m.grid;
+  for (int k = 1; k <= g.n.z(); ++k) {
+    for (int j = 1; j <= g.n.y(); ++j) {
+      for (int i = 1; i <= g.n.x(); ++i) {
+        const int c = g.index(i, j, k);
+        const auto cs = static_cast<std::size_t>(c);
+        if (m.fixed[cs] != CellFlag::empty) continue;
+        const int held = first_static[cs];
+        if (!any_moving) {
+          if (held >= 0)
+            out.push_back(
+                {c, obstacles[static_cast<std::size_t>(held)].velocity_at(g.centre(i, j, k))});
+          continue;
+        }
+        const Vec3 x = g.centre(i, j, k);
+        for (std::size_t o = 0; o < obstacles.size(); ++o) {
+          const ObstacleModel& obstacle = obstacles[o];
+          Vec3 normal;
+          const bool inside = obstacle.moving ? signed_distance(obstacle, x, normal) < 0
+                                              : held == static_cast<int>(o);
+          if (inside) {
+            out.push_back({c, obstacle.velocity_at(x)});
             break;
           }
         }
@@ -128,7 +167,8 @@ void place_liquid_solids(const Model& model, std::size_t l, Workspace& ws) {
   clear_moving_solids(moving);
   if (!two_way(model.liquids[l])) return;
   const LiquidModel& m = model.liquids[l];
-  collect_obstacle_cells(m, ws.drive.obstacles, ws.liquid_obstacle_cells);
+  collect_obstacle_cells(m, ws.drive.obstacles, ws.liquid_static_obstacle[l],
+                         ws.liquid_obstacle_cells);
   for (const SolidCell& cell : ws.liquid_obstacle_cells) {
     mark_solid_cell(m, cell.cell, cell.velocity, moving);
   }
@@ -147,7 +187,13 @@ void size_liquids(const Model& model, Workspace& ws) {
     size_liquid_workspace(model.liquids[l], ws.liquids[l]);
   }
   ws.liquid_steps.assign(model.liquids.size(), LiquidStepStats{});
+  ws.liquid_static_obstacle.assign(model.liquids.size(), {});
   if (any_two_way(model)) {
+    for (std::size_t l = 0; l < model.liquids.size(); ++l) {
+      if (two_way(model.liquids[l])) {
+        find_static_obstacle_cells(model.liquids[l], model.obstacles, ws.liquid_static_obstacle[l]);
+      }
+    }
     ws.liquid_kinematics = ws.bodies;  // sized as the bodies' own
     ws.liquid_surfaces.reserve(model.bodies.size());
     ws.liquid_obstacle_cells.reserve(
@@ -188,7 +234,8 @@ void advance_liquids(const SubstepContext& c) {
       // back to its own time along their velocities.
       if (!captured) capture_body_surfaces(c.model, c.state, c.ws);
       captured = true;
-      collect_obstacle_cells(c.model.liquids[l], c.ws.drive.obstacles, c.ws.liquid_obstacle_cells);
+      collect_obstacle_cells(c.model.liquids[l], c.ws.drive.obstacles,
+                             c.ws.liquid_static_obstacle[l], c.ws.liquid_obstacle_cells);
       inputs.obstacle_cells = c.ws.liquid_obstacle_cells;
       inputs.surfaces = c.ws.liquid_surfaces;
       inputs.surfaces_time = c.state.time;

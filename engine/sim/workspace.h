@@ -103,6 +103,9 @@ struct Workspace {
   std::vector<BodyWorkspace> liquid_kinematics;
   std::vector<SolidSurface> liquid_surfaces;
   std::vector<SolidCell> liquid_obstacle_cells;
+  // Per liquid and cell, the first obstacle that no track moves holding the cell's centre (-1:
+  // none): found once from the Model, so each substep tests only the moving obstacles.
+  std::vector<std::vector<int>> liquid_static_obstacle;
   BodyCollisionStats body_collision_stats;  // of the last substep
   SegmentBodyStats segment_body_stats;      // of the last substep
   int contacts = 0;  // touching nodes counted in the substep under way (-> State::contact_nodes)
