@@ -12,36 +12,17 @@
 #include "core/error.h"
 #include "liquid/cell_labels.h"
 #include "liquid/liquid_step.h"
+#include "liquid_test_support.h"
 
 namespace pbm {
 namespace {
 
 constexpr Real kG = 9.81;
 
-struct Liquid {
-  LiquidModel model;
-  LiquidState state;
-  LiquidWorkspace ws;
-  LiquidInputs inputs;
-  explicit Liquid(const LiquidDef& def) {
-    inputs.gravity = Vec3(0, 0, -kG);
-    model = build_liquid_model(def, inputs.gravity, "test.json", 0);
-    state = initial_liquid_state(model, inputs.gravity);
-    size_liquid_workspace(model, ws);
-  }
-  void run(Real seconds) {
-    LiquidStepStats stats;
-    const Real t0 = state.time;
-    const int frames = static_cast<int>(std::ceil(seconds * 60 - 1e-9));
-    for (int k = 1; k <= frames; ++k) {
-      ASSERT_TRUE(
-          advance_liquid(model, inputs, t0 + std::min(seconds, k / 60.0), state, ws, stats));
-    }
-  }
-  Real volume() {
-    label_cells(model, state, ws.flags, ws.fill, ws.count);
-    return liquid_volume(model, ws.flags, ws.fill);
-  }
+// Frames of 1/60 s.
+struct Liquid : test::LoneLiquid {
+  using LoneLiquid::LoneLiquid;
+  void run(Real seconds) { LoneLiquid::run(seconds, 60); }
   Real max_marker_speed() const {
     Real v = 0;
     for (const Vec3& u : state.marker_velocity) v = std::max(v, u.norm());

@@ -11,41 +11,16 @@
 #include "liquid/boundary_conditions.h"
 #include "liquid/cell_labels.h"
 #include "liquid/liquid_step.h"
+#include "liquid_test_support.h"
 
 namespace pbm {
 namespace {
 
 constexpr Real kG = 9.81;
 
-struct Liquid {
-  LiquidModel model;
-  LiquidState state;
-  LiquidWorkspace ws;
-  LiquidInputs inputs;
-  explicit Liquid(const LiquidDef& def) {
-    inputs.gravity = Vec3(0, 0, -kG);
-    model = build_liquid_model(def, inputs.gravity, "test.json", 0);
-    state = initial_liquid_state(model, inputs.gravity);
-    size_liquid_workspace(model, ws);
-  }
-  // In frames of 1/30 s, as the World advances a liquid; every frame reaches its end.
-  LiquidStepStats run(Real seconds) {
-    LiquidStepStats stats;
-    // Frame ends counted from the start, as the World snaps its targets to frame times: a
-    // remainder advance_liquid leaves as negligible must not become a frame of its own.
-    const Real t0 = state.time;
-    const int frames = static_cast<int>(std::ceil(seconds * 30 - 1e-9));
-    for (int k = 1; k <= frames; ++k) {
-      EXPECT_TRUE(
-          advance_liquid(model, inputs, t0 + std::min(seconds, k / 30.0), state, ws, stats));
-    }
-    return stats;
-  }
+struct Liquid : test::LoneLiquid {
+  using LoneLiquid::LoneLiquid;
   void label() { label_cells(model, state, ws.flags, ws.fill, ws.count); }
-  Real volume() {
-    label();
-    return liquid_volume(model, ws.flags, ws.fill);
-  }
   // The largest speed on a face with liquid on a side [m/s].
   Real max_liquid_speed() {
     label();

@@ -10,6 +10,7 @@
 #include "core/bits.h"
 #include "liquid/liquid_step.h"
 #include "liquid/spray.h"
+#include "liquid_test_support.h"
 
 namespace pbm {
 namespace {
@@ -37,25 +38,7 @@ TEST(LiquidSpray, FlightIsBallisticWithoutDragAndReachesTheTerminalSpeedWithIt) 
   }
 }
 
-struct Tank {
-  LiquidModel model;
-  LiquidState state;
-  LiquidWorkspace ws;
-  LiquidInputs inputs;
-  LiquidStepStats stats;
-  explicit Tank(const LiquidDef& def) {
-    inputs.gravity = Vec3(0, 0, -kG);
-    model = build_liquid_model(def, inputs.gravity, "test.json", 0);
-    state = initial_liquid_state(model, inputs.gravity);
-    size_liquid_workspace(model, ws);
-  }
-  void run_to(Real t) {
-    while (state.time < t - 1e-9) {
-      ASSERT_TRUE(
-          advance_liquid(model, inputs, std::min(t, state.time + 1.0 / 30), state, ws, stats));
-    }
-  }
-};
+using Tank = test::LoneLiquid;
 
 LiquidDef splash_tank(Real column_width) {
   LiquidDef def;

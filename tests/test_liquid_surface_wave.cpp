@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "liquid/liquid_step.h"
+#include "liquid_test_support.h"
 
 namespace pbm {
 namespace {
@@ -31,43 +32,35 @@ struct Fit {
   Real amplitude = 0, phase = 0;
 };
 
-struct WaveTank {
-  LiquidModel model;
-  LiquidState state;
-  LiquidWorkspace ws;
-  LiquidInputs inputs;
+// The tank of kLength m at `cells` per metre, kDepth deep, forced by the wave of kWavelength.
+LiquidDef wave_tank(SurfaceMethod surface, int cells) {
+  LiquidDef def;
+  const Real h = 1.0 / cells;
+  def.domain = {Vec3(0, 0, 0), Vec3(kLength, h, 0.5)};
+  def.resolution = Eigen::Vector3i(cells * static_cast<int>(kLength), 1, cells / 2);
+  def.fluid.push_back({{Vec3(0, 0, 0), Vec3(kLength, h, kDepth)}, Vec3::Zero()});
+  def.surface = surface;
+  def.markers_per_axis = 3;
+  // depth 0: the liquid's at the start, kDepth.
+  def.surface_waves.push_back({.amplitude = kAmplitude,
+                               .wavelength = kWavelength,
+                               .direction = Vec3::UnitX(),
+                               .depth = 0,
+                               .start = 0,
+                               .duration = duration()});
+  return def;
+}
+
+struct WaveTank : test::LoneLiquid {
   int cells_per_metre;
   int columns;
 
   WaveTank(SurfaceMethod surface, int cells)
-      : cells_per_metre(cells), columns(cells * static_cast<int>(kLength)) {
-    LiquidDef def;
-    const Real h = 1.0 / cells;
-    def.domain = {Vec3(0, 0, 0), Vec3(kLength, h, 0.5)};
-    def.resolution = Eigen::Vector3i(columns, 1, cells / 2);
-    def.fluid.push_back({{Vec3(0, 0, 0), Vec3(kLength, h, kDepth)}, Vec3::Zero()});
-    def.surface = surface;
-    def.markers_per_axis = 3;
-    // depth 0: the liquid's at the start, kDepth.
-    def.surface_waves.push_back({.amplitude = kAmplitude,
-                                 .wavelength = kWavelength,
-                                 .direction = Vec3::UnitX(),
-                                 .depth = 0,
-                                 .start = 0,
-                                 .duration = duration()});
-    inputs.gravity = Vec3(0, 0, -kG);
-    model = build_liquid_model(def, inputs.gravity, "test.json", 0);
-    state = initial_liquid_state(model, inputs.gravity);
-    size_liquid_workspace(model, ws);
-  }
+      : LoneLiquid(wave_tank(surface, cells)),
+        cells_per_metre(cells),
+        columns(cells * static_cast<int>(kLength)) {}
 
-  void run_to(Real t_end) {
-    LiquidStepStats stats;
-    while (state.time < t_end - 1e-9) {
-      const Real t = std::min(t_end, state.time + 1.0 / 60);
-      ASSERT_TRUE(advance_liquid(model, inputs, t, state, ws, stats));
-    }
-  }
+  void run_to(Real t_end) { LoneLiquid::run_to(t_end, 60); }
 
   // The surface's height above the mean over each column [m].
   std::vector<Real> elevation() const {
