@@ -114,6 +114,20 @@ struct Points {
   Layer layer = Layer::overlay;
 };
 
+// A scalar field sampled over a rectangle in space (a liquid's pressure or speed across a
+// section of its grid), drawn in false colour from `low` (blue) to `high` (red) with a colour bar
+// naming it: sample (i, j) at corner + (i + 0.5) / nu * u + (j + 0.5) / nv * v; a NaN sample
+// (no liquid there) is not drawn.
+struct FieldSection {
+  std::string label{};  // what the colour bar names, with its unit: "pressure [Pa]"
+  Vec3f corner = Vec3f::Zero();
+  Vec3f u{1, 0, 0}, v{0, 1, 0};  // the rectangle's edges [m]
+  int nu = 0, nv = 0;
+  std::vector<float> values{};  // nu * nv, row by row (i fastest)
+  float low = 0, high = 1;      // the colour bar's range
+  Layer layer = Layer::scene;
+};
+
 // Where the scene's camera is at the snapshot's time (its tracks applied).
 struct CameraView {
   Vec3f position{6, -8, 4};
@@ -139,6 +153,7 @@ struct Snapshot {
   std::vector<HeightField> height_fields{};
   std::vector<Lines> lines{};
   std::vector<Points> points{};
+  std::vector<FieldSection> sections{};
   std::optional<CameraView> camera{};  // absent: the scene has none (views frame `focus`)
   Bounds focus{};                      // what an automatic camera frames: the moving objects
 };

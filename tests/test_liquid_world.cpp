@@ -143,6 +143,44 @@ TEST(LiquidWorld, TheSnapshotDrawsTheSurfaceOrTheMarkersAndFramesTheDomain) {
   EXPECT_EQ(sim.state.liquids[0].markers.size(), 240u);
   EXPECT_FLOAT_EQ(snap.focus.max.x(), 1.0f);
   EXPECT_FLOAT_EQ(snap.focus.max.z(), 0.6f);
+  EXPECT_TRUE(snap.sections.empty());  // section "none", the default
+}
+
+TEST(LiquidWorld, ThePressureSectionIsHydrostaticAndTheSpeedSectionStill) {
+  // Still water 0.25 m deep in cells 0.05 m tall: p = rho g (0.25 - z) at the Full cells'
+  // centres, no value above the surface.
+  for (const char* quantity : {"pressure", "speed"}) {
+    Simulation sim(parse_scene(tank_scene(false, std::string(R"(, "section": ")") + quantity +
+                                                     R"(", "section_axis": "y")"),
+                               "tank.json"));
+    for (int f = 0; f < 10; ++f) ASSERT_TRUE(advance_frame(sim).ok);
+    const draw::Snapshot snap = make_snapshot(sim);
+    ASSERT_EQ(snap.sections.size(), 1u);
+    const draw::FieldSection& s = snap.sections[0];
+    ASSERT_EQ(s.nu, 20);
+    ASSERT_EQ(s.nv, 12);
+    EXPECT_FLOAT_EQ(s.u.x(), 1.0f);
+    EXPECT_FLOAT_EQ(s.v.z(), 0.6f);
+    EXPECT_FLOAT_EQ(s.corner.y(), 0.05f);  // the one layer's middle
+    EXPECT_EQ(s.label, std::string("water ") + quantity +
+                           (quantity == std::string("pressure") ? " [Pa]" : " [m/s]"));
+    for (int j = 0; j < s.nv; ++j) {
+      for (int i = 0; i < s.nu; ++i) {
+        const float value = s.values[static_cast<std::size_t>(i + s.nu * j)];
+        const Real z = 0.05 * (j + 0.5);
+        if (z > 0.25) {
+          EXPECT_TRUE(std::isnan(value)) << i << " " << j;
+        } else if (quantity == std::string("speed")) {
+          EXPECT_LT(value, 1e-6);
+        } else if (z < 0.2) {  // Full cells
+          EXPECT_NEAR(value, 1000 * 9.81 * (0.25 - z), 0.01 * 1000 * 9.81 * 0.25) << i << " " << j;
+        }
+      }
+    }
+    if (quantity == std::string("pressure")) {
+      EXPECT_NEAR(s.high, 1000 * 9.81 * (0.25 - 0.025), 0.01 * 1000 * 9.81 * 0.25);
+    }
+  }
 }
 
 }  // namespace

@@ -13,9 +13,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 
 #include "cli_runner.h"
+#include "colour_bar.h"
 #include "core/error.h"
 #include "osmesa_context.h"
 #include "png_io.h"
@@ -412,6 +414,68 @@ TEST(Render, ATranslucentSolidShowsWhatIsBehindIt) {
   // The ray crosses the front box's two faces (no culling), each blending half: a quarter of the
   // back box shows through, in display values.
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(half[c], 0.25 * back[c] + 0.75 * opaque[c], 2.0) << c;
+}
+
+TEST(Render, AFieldSectionIsDrawnInItsFalseColoursWithAColourBar) {
+  OsmesaContext context;
+  Renderer renderer(context.functions());
+  RenderOptions options;
+  options.width = 640;
+  options.height = 320;
+  options.shadows = false;
+  options.samples = 1;
+  const Camera camera =
+      camera_from_view({.position = {0, -5, 0}, .target = {0, 0, 0}, .up = {0, 0, 1}, .fov = 30});
+  // A 2 x 2 m section facing the camera in 2 x 2 cells: low, high; NaN, mid.
+  draw::Snapshot snap;
+  snap.sections.push_back({.label = "pressure [Pa]",
+                           .corner = {-1, 0, -1},
+                           .u = {2, 0, 0},
+                           .v = {0, 0, 2},
+                           .nu = 2,
+                           .nv = 2,
+                           .values = {0, 100, std::numeric_limits<float>::quiet_NaN(), 50},
+                           .low = 0,
+                           .high = 100});
+  renderer.render(snap, camera, options);
+  std::vector<unsigned char> rgb;
+  renderer.read_rgb(rgb);
+  // Rows top to bottom: the bottom row of cells (j = 0) is in the lower half of the image.
+  auto pixel = [&](int x, int y) {
+    const std::size_t k = 3 * (static_cast<std::size_t>(y) * 640 + static_cast<std::size_t>(x));
+    return Eigen::Vector3f(rgb[k] / 255.0f, rgb[k + 1] / 255.0f, rgb[k + 2] / 255.0f);
+  };
+  const Eigen::Vector3f low = pixel(290, 190), high = pixel(350, 190), mid = pixel(350, 130),
+                        none = pixel(290, 130);
+  std::printf("cells: low (%.3f %.3f %.3f), high (%.3f %.3f %.3f), mid (%.3f %.3f %.3f)\n", low.x(),
+              low.y(), low.z(), high.x(), high.y(), high.z(), mid.x(), mid.y(), mid.z());
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(low[c], section_colour(0)[c], 0.01) << c;
+    EXPECT_NEAR(high[c], section_colour(1)[c], 0.01) << c;
+    EXPECT_NEAR(mid[c], section_colour(0.5f)[c], 0.01) << c;
+  }
+  // No liquid there: the sky, not a colour of the map.
+  EXPECT_GT((none - section_colour(0)).norm(), 0.2);
+  EXPECT_GT((none - section_colour(0.5f)).norm(), 0.2);
+  // The colour bar at the top right: its gradient, yellow at the top, purple at the bottom, in a
+  // dark panel. Its bar's left edge is 12 + 150 - 8 pixels from the right edge.
+  const int bar_x = 640 - 12 - 150 + 8 + 9;
+  const int bar_top = 12 + 8 + 20, bar_bottom = bar_top + 180;
+  // Up the bar the colour of t = (bottom - y) / height, in steps of 1/32.
+  for (const int y : {bar_top + 3, bar_top + 60, bar_top + 120, bar_bottom - 3}) {
+    const float t = static_cast<float>(bar_bottom - y) / 180;
+    const Eigen::Vector3f seen = pixel(bar_x, y);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(seen[c], section_colour(t)[c], 0.03) << c << " " << y;
+  }
+  EXPECT_GT(pixel(bar_x, bar_top + 3).x(), 0.9f);      // yellow at the top
+  EXPECT_LT(pixel(bar_x, bar_bottom - 3).y(), 0.05f);  // purple at the bottom
+  EXPECT_NEAR(pixel(640 - 14, 14).x(), 0.12, 0.01);    // the panel's corner
+  // The label's glyphs: white pixels in the panel's top line.
+  int white = 0;
+  for (int y = 12 + 8; y < 12 + 8 + 14; ++y) {
+    for (int x = 640 - 12 - 150 + 8; x < 640 - 12 - 8; ++x) white += pixel(x, y).minCoeff() > 0.9f;
+  }
+  EXPECT_GT(white, 30);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "colour_bar.h"
 #include "shadow_casters.h"
 
 namespace pbm {
@@ -323,6 +324,18 @@ void DrawableBuffers::upload_planes_and_colored(const draw::Snapshot& s,
     for (std::size_t k = 0; k < p.positions.size(); ++k) {
       vertex(p.positions[k], k < p.colors.size() ? p.colors[k] : white);
     }
+    r.count = first() - r.first;
+    if (r.count > 0) colored.push_back(r);
+  }
+  for (const draw::FieldSection& section : s.sections) {
+    ColoredRange r{.first = first(), .lines = false, .triangles = true, .layer = section.layer};
+    append_section_triangles(section, vertices_);
+    r.count = first() - r.first;
+    if (r.count > 0) colored.push_back(r);
+  }
+  for (std::size_t k = 0; k < s.sections.size(); ++k) {
+    ColoredRange r{.first = first(), .lines = false, .triangles = true, .screen = true};
+    append_colour_bar(s.sections[k], static_cast<int>(k), vertices_);
     r.count = first() - r.first;
     if (r.count > 0) colored.push_back(r);
   }

@@ -41,11 +41,13 @@ struct Solid {
 };
 
 // A range of the coloured vertex buffer (position, colour): Lines (segments, maybe their end
-// points) or Points.
+// points), Points, or triangles (a field section's cells; with `screen`, a colour bar in pixels
+// from the image's top-right corner, colour_bar.h).
 struct ColoredRange {
   GLint first = 0;
   GLsizei count = 0;
   bool lines = true, end_points = false;
+  bool triangles = false, screen = false;
   float point_size = 1;  // [pixels]: Points, or Lines' end points
   draw::Layer layer = draw::Layer::overlay;
 };

@@ -132,6 +132,7 @@ struct Renderer::Impl {
   void draw_overlay(const Mat4f& view_proj, const Mat4f& light, const Camera& camera,
                     bool shadows) const;
   void draw_colored(const Mat4f& view_proj, draw::Layer layer) const;
+  void draw_screen(int width, int height) const;
 };
 
 // Planes cover most of the image, and on a software rasterizer their fill is the cost. Their
@@ -190,6 +191,28 @@ void Renderer::Impl::draw_planes(const draw::Snapshot& s, const Mat4f& view_proj
   }
 }
 
+// What is drawn over the picture in pixels (the field sections' colour bars), from the image's
+// top-right corner: x' = 1 + 2 x / width, y' = 1 - 2 y / height.
+void Renderer::Impl::draw_screen(int width, int height) const {
+  bool any = false;
+  for (const ColoredRange& r : buffers.colored) any = any || r.screen;
+  if (!any) return;
+  Mat4f pixels = Mat4f::Identity();
+  pixels(0, 0) = 2.0f / static_cast<float>(width);
+  pixels(0, 3) = 1;
+  pixels(1, 1) = -2.0f / static_cast<float>(height);
+  pixels(1, 3) = 1;
+  gl.Disable(GL_DEPTH_TEST);
+  gl.UseProgram(colored);
+  set(colored, "u_view_proj", pixels);
+  set(colored, "u_point_size", 1.0f);
+  gl.BindVertexArray(buffers.colored_vao());
+  for (const ColoredRange& r : buffers.colored) {
+    if (r.screen) gl.DrawArrays(GL_TRIANGLES, r.first, r.count);
+  }
+  gl.Enable(GL_DEPTH_TEST);
+}
+
 // Lines and points of one layer: the scene's hidden by what is in front, the overlay's over
 // everything (a constraint between parts is seen through them).
 void Renderer::Impl::draw_colored(const Mat4f& view_proj, draw::Layer layer) const {
@@ -200,7 +223,11 @@ void Renderer::Impl::draw_colored(const Mat4f& view_proj, draw::Layer layer) con
   set(colored, "u_view_proj", view_proj);
   gl.BindVertexArray(buffers.colored_vao());
   for (const ColoredRange& r : buffers.colored) {
-    if (r.layer != layer) continue;
+    if (r.layer != layer || r.screen) continue;
+    if (r.triangles) {
+      gl.DrawArrays(GL_TRIANGLES, r.first, r.count);
+      continue;
+    }
     if (r.lines) {
       set(colored, "u_point_size", 1.0f);
       gl.DrawArrays(GL_LINES, r.first, r.count);
@@ -339,6 +366,7 @@ void Renderer::render(const draw::Snapshot& s, const Camera& camera, const Rende
   }
 
   if (o.overlays) r.draw_overlay(view_proj, light, camera, o.shadows);
+  r.draw_screen(o.width, o.height);
   gl.BindVertexArray(0);
   r.targets.resolve();
   gl.Finish();

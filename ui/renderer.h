@@ -8,6 +8,8 @@
 //   planes       finite gridded quads, shaded per pixel only where shadows can fall
 //   primitives   one unit shape per kind, tessellated once, placed per instance by uniforms
 //   height fields, lines (maybe with a dot at each end), points
+//   field sections  flat false-colour cells, and each one's colour bar over the picture (its
+//                label and range in a bitmap font, colour_bar.h)
 // The scene layer always; the overlay layer (springs, constraints, the meshes' element edges)
 // only with RenderOptions::overlays. Scene-layer solids cast shadows.
 #pragma once

@@ -71,6 +71,12 @@ struct SurfaceWaveDef {
 // height field always draws its surface.
 enum class LiquidDisplay { surface, markers, both };
 
+// A cross-section of the grid the studio and `pbm render` draw in false colour with a colour bar
+// (none, the pressure [Pa] or the speed [m/s] at the cells' centres), across the axis given at a
+// fraction of the domain along it.
+enum class LiquidSection { none, pressure, speed };
+enum class SectionAxis { x, y, z };
+
 struct LiquidDef {
   std::string name;
   LiquidBoxDef domain{Vec3::Zero(), Vec3::Ones()};  // the grid's extent [m]
@@ -96,9 +102,12 @@ struct LiquidDef {
   PressureSolver solver = PressureSolver::mic_pcg;
   SurfaceMethod surface = SurfaceMethod::markers;
   LiquidDisplay display = LiquidDisplay::surface;
-  Real cfl = 0.5;         // the CFL number (16.3) each substep keeps to, in (0, 1]
-  Real relaxation = 1.7;  // beta_0 of (16.7), in [1, 2)
-  Real tolerance = 1e-4;  // epsilon: every Full cell's |D| of (16.5) below it [1/s]
+  LiquidSection section = LiquidSection::none;
+  SectionAxis section_axis = SectionAxis::y;
+  Real section_position = 0.5;  // in [0, 1] of the domain along section_axis
+  Real cfl = 0.5;               // the CFL number (16.3) each substep keeps to, in (0, 1]
+  Real relaxation = 1.7;        // beta_0 of (16.7), in [1, 2)
+  Real tolerance = 1e-4;        // epsilon: every Full cell's |D| of (16.5) below it [1/s]
   // Or, when > 0, the solve's residual ||D - A dp||_2 below this fraction of ||D||_2.
   Real relative_tolerance = 0;
   int max_iterations = 1000;  // of a pressure solve

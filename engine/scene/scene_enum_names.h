@@ -75,6 +75,12 @@ inline constexpr NameTable<LiquidDisplay, 3> kLiquidDisplayNames{
     {{"surface", LiquidDisplay::surface},
      {"markers", LiquidDisplay::markers},
      {"both", LiquidDisplay::both}}};
+inline constexpr NameTable<LiquidSection, 3> kLiquidSectionNames{
+    {{"none", LiquidSection::none},
+     {"pressure", LiquidSection::pressure},
+     {"speed", LiquidSection::speed}}};
+inline constexpr NameTable<SectionAxis, 3> kSectionAxisNames{
+    {{"x", SectionAxis::x}, {"y", SectionAxis::y}, {"z", SectionAxis::z}}};
 inline constexpr NameTable<LiquidCoupling, 2> kLiquidCouplingNames{
     {{"one_way", LiquidCoupling::one_way}, {"two_way", LiquidCoupling::two_way}}};
 inline constexpr NameTable<WallKind, 2> kWallKindNames{

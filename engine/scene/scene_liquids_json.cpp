@@ -195,6 +195,16 @@ constexpr auto kLiquidFields = std::to_array<Field<LiquidDef>>({
         {.key = "display",
          .description = "What is drawn of a marker liquid: its surface (a translucent mesh of "
                         "a level set of the markers), the markers as points, or both."}),
+    choice<&LiquidDef::section, kLiquidSectionNames>(
+        {.key = "section",
+         .description = "A cross-section of the grid drawn in false colour with a colour bar: "
+                        "none, the pressure [Pa] or the speed [m/s] at the cells' centres."}),
+    choice<&LiquidDef::section_axis, kSectionAxisNames>(
+        {.key = "section_axis", .description = "The axis the cross-section is across."}),
+    value<&LiquidDef::section_position>(
+        {.key = "section_position",
+         .range = kUnitInterval,
+         .description = "Where the cross-section is: a fraction of the domain along its axis."}),
     value<&LiquidDef::cfl>({.key = "cfl",
                             .range = {.lo = 0, .hi = 1, .lo_open = true},
                             .description = "The CFL number (16.3) every substep keeps to: the "

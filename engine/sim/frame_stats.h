@@ -45,8 +45,9 @@ struct LiquidFrameStats {
   int spray = 0, foam = 0;  // spray and foam particles (liquid/spray.h)
   Real kinetic = 0;         // 1/2 rho |u|^2 over the liquid's cells, u at their centres [J]
   Real max_speed = 0;       // the fastest face of a liquid cell [m/s]
-  // Its push on the bodies at the measured state (sim/liquid_body_loads.h): buoyancy (16.15)
-  // and drag [N], and the area of their surfaces under its surface [m^2].
+  // Its push on the bodies and the figures' segments at the measured state
+  // (sim/liquid_body_loads.h, sim/liquid_segment_loads.h): buoyancy (16.15) and drag [N], and
+  // the area of their surfaces under its surface [m^2].
   Vec3 body_force = Vec3::Zero();
   Real wetted_area = 0;
 };

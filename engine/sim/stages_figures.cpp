@@ -120,16 +120,6 @@ void add_point_force(const SpatialTransform& X, const Vec3& force, const Vec3& p
   total += ForceVector{local.cross(f), f};
 }
 
-// Every figure's kinematics at (q, v) (v may be null) and its segments' world transforms.
-void all_figure_kinematics(const Model& model, const Real* q, const Real* v, FiguresWorkspace& fw) {
-  for (std::size_t f = 0; f < model.figures.size(); ++f) {
-    const FigureModel& figure = model.figures[f].model;
-    pbm::figure_kinematics(figure, q + figure.state_q_offset,
-                           v ? v + figure.state_v_offset : nullptr, fw.each[f]);
-    segment_world_transforms(figure, fw.each[f], fw.worlds[f]);
-  }
-}
-
 // The velocity of segment a's material relative to segment b's at the contact's point.
 Vec3 relative_velocity(const FiguresWorkspace& fw, const SegmentContact& k) {
   return segment_point_velocity(fw.worlds[k.figure_a][k.segment_a],
@@ -289,6 +279,19 @@ void add_event_drawables(const CompiledFigure& figure, std::size_t f, const Inpu
 
 bool figures_present(const Model& model) {
   return !model.figures.empty();
+}
+
+void all_figure_kinematics(const Model& model, const Real* q, const Real* v, FiguresWorkspace& fw) {
+  for (std::size_t f = 0; f < model.figures.size(); ++f) {
+    const FigureModel& figure = model.figures[f].model;
+    pbm::figure_kinematics(figure, q + figure.state_q_offset,
+                           v ? v + figure.state_v_offset : nullptr, fw.each[f]);
+    segment_world_transforms(figure, fw.each[f], fw.worlds[f]);
+  }
+}
+
+bool figure_external_forces_present(const Model& model) {
+  return figure_contacts_present(model) || !model.liquids.empty();
 }
 
 void size_figures(const Model& model, Workspace& ws) {
@@ -451,16 +454,18 @@ void figure_dynamics(const RateContext& c) {
     // The explicit controllers' forces (the controllers stage ran before).
     if (compiled.actuated()) fw.tau.head(figure.n_v) += fw.control[f].tau;
     // Gravity as the base's acceleration, at its value of the moment (tracks may drive it); the
-    // contact stage's forces when obstacles are present (figure_contact_forces ran before).
+    // contact stage's forces when obstacles or liquids are present (figure_contact_forces and
+    // liquid_body_forces ran before).
+    const bool external_present = figure_external_forces_present(c.model);
     const std::span<const ForceVector> external =
-        figure_contacts_present(c.model) ? std::span<const ForceVector>(fw.contact_forces[f])
-                                         : std::span<const ForceVector>();
+        external_present ? std::span<const ForceVector>(fw.contact_forces[f])
+                         : std::span<const ForceVector>();
     const Real* armature = implicit_damping(c.model, figure, fw);
     if (has_stable_pd(compiled)) {
       stable_pd_dynamics(c, f, external, armature);
-    } else if (figure_contacts_present(c.model) || !compiled.site_actuators.empty()) {
-      // figure_contact_forces (or, without contacts, the site actuators' forces), a stage before
-      // this one (sim/subsystems.cpp), left this rate's kinematics in fw.each[f].
+    } else if (external_present || !compiled.site_actuators.empty()) {
+      // The contact stage (or, without it, the site actuators' forces), a stage before this one
+      // (sim/subsystems.cpp), left this rate's kinematics in fw.each[f].
       forward_dynamics_after_kinematics(figure, fw.tau.data(), external, c.ws.drive.gravity,
                                         fw.each[f], c.v_dot.data() + figure.state_v_offset,
                                         armature);

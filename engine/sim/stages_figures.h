@@ -11,6 +11,13 @@ namespace pbm::stages {
 
 bool figures_present(const Model& model);
 void size_figures(const Model& model, Workspace& ws);
+// Every figure's kinematics at (q, v) (v may be null) and its segments' world transforms, into
+// fw.each and fw.worlds.
+void all_figure_kinematics(const Model& model, const Real* q, const Real* v, FiguresWorkspace& fw);
+// Whether forces act on segments beyond gravity, the joints and the actuators: the contact stage's
+// (obstacles, other segments) and the liquids' (sim/stages_liquid.h), in fw.contact_forces, with
+// that rate's kinematics in fw.each and fw.worlds.
+bool figure_external_forces_present(const Model& model);
 // Contacts with obstacles (sec. 15.3): the contact stage's spring-dampers among the rates, the
 // impact stage after the step.
 bool figure_contacts_present(const Model& model);

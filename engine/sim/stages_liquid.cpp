@@ -11,6 +11,9 @@
 #include "liquid/liquid_probe.h"
 #include "liquid/liquid_surface_mesh.h"
 #include "sim/liquid_body_loads.h"
+#include "sim/liquid_section.h"
+#include "sim/liquid_segment_loads.h"
+#include "sim/stages_figures.h"
 #include "sim/tracks.h"
 
 namespace pbm::stages {
@@ -246,7 +249,7 @@ void advance_liquids(const SubstepContext& c) {
 }
 
 bool liquid_bodies_present(const Model& model) {
-  return !model.liquids.empty() && !model.bodies.empty();
+  return !model.liquids.empty() && (!model.bodies.empty() || !model.figures.empty());
 }
 
 void size_liquid_bodies(const Model& model, Workspace& ws) {
@@ -255,6 +258,20 @@ void size_liquid_bodies(const Model& model, Workspace& ws) {
     ws.liquid_body_force[b].assign(static_cast<std::size_t>(model.bodies[b].n_nodes()),
                                    Vec3::Zero());
   }
+  if (model.figures.empty()) return;
+  FiguresWorkspace& fw = *ws.figures;  // the figures' row sized it first (sim/subsystems.cpp)
+  fw.liquid_patches.resize(model.figures.size());
+  std::size_t most = 0;
+  for (std::size_t f = 0; f < model.figures.size(); ++f) {
+    const FigureDef& def = model.scene.figures[f];
+    fw.liquid_patches[f].resize(def.segments.size());
+    for (std::size_t i = 0; i < def.segments.size(); ++i) {
+      segment_surface_patches(def.segments[i].shape, kSegmentSurfaceDivisions,
+                              fw.liquid_patches[f][i]);
+    }
+    most = std::max(most, def.segments.size());
+  }
+  fw.liquid_measured.assign(most, ForceVector{});
 }
 
 void liquid_probe_start(const SubstepContext& c) {
@@ -278,6 +295,25 @@ void liquid_body_forces(const RateContext& c) {
     }
     for (std::size_t i = 0; i < force.size(); ++i) bw.force[i] += force[i];
   }
+  if (c.model.figures.empty()) return;
+  // Into the contact stage's forces on the segments: figure_contact_forces, a hook before this
+  // one, cleared them and left this rate's kinematics where a scene has contacts.
+  FiguresWorkspace& fw = *c.ws.figures;
+  if (!figure_contacts_present(c.model)) {
+    all_figure_kinematics(c.model, c.q.data(), c.v.data(), fw);
+    for (std::vector<ForceVector>& forces : fw.contact_forces) {
+      std::fill(forces.begin(), forces.end(), ForceVector{});
+    }
+  }
+  fw.liquid_power = 0;
+  for (std::size_t f = 0; f < c.model.figures.size(); ++f) {
+    for (std::size_t l = 0; l < c.model.liquids.size(); ++l) {
+      fw.liquid_power +=
+          add_liquid_segment_loads(c.model.liquids[l], c.ws.liquids[l], fw.liquid_patches[f],
+                                   fw.worlds[f], fw.each[f].v, fw.contact_forces[f])
+              .power;
+    }
+  }
 }
 
 void liquid_body_work(const SubstepContext& c) {
@@ -289,6 +325,7 @@ void liquid_body_work(const SubstepContext& c) {
     const BodyWorkspace& bw = c.ws.bodies[b];
     for (std::size_t i = 0; i < force.size(); ++i) power += force[i].dot(bw.x_dot[i]);
   }
+  if (!c.model.figures.empty()) power += c.ws.figures->liquid_power;
   c.state.liquid_work += power * c.dt;
 }
 
@@ -307,7 +344,7 @@ void measure_liquids(const Model& model, const Inputs& inputs, const State& stat
     // What the frame's substeps cost (advance_frame starts each attempt afresh).
     out.step = ws.liquid_steps[l];
     place_liquid_solids(model, l, ws);
-    if (model.bodies.empty()) {
+    if (model.bodies.empty() && model.figures.empty()) {
       label_cells(m, s, w.flags, w.fill, w.count, &w.moving);
     } else {
       // The push on the bodies at this state (their kinematics are measure_bodies'): the probe
@@ -319,6 +356,18 @@ void measure_liquids(const Model& model, const Inputs& inputs, const State& stat
         const LiquidLoadTotals t = add_liquid_loads(m, w, model.bodies[b], ws.bodies[b], scratch);
         out.body_force += t.force;
         out.wetted_area += t.wetted_area;
+      }
+      if (!model.figures.empty()) {
+        FiguresWorkspace& fw = *ws.figures;
+        all_figure_kinematics(model, state.q.data(), state.v.data(), fw);
+        for (std::size_t f = 0; f < model.figures.size(); ++f) {
+          const std::span<ForceVector> forces(fw.liquid_measured.data(),
+                                              fw.liquid_patches[f].size());
+          const LiquidSegmentTotals t = add_liquid_segment_loads(
+              m, w, fw.liquid_patches[f], fw.worlds[f], fw.each[f].v, forces);
+          out.body_force += t.force;
+          out.wetted_area += t.wetted_area;
+        }
       }
     }
     out.volume = liquid_volume(m, w.flags, w.fill);
@@ -404,7 +453,6 @@ std::string describe_liquid_failure(const Model& model, const State& state) {
 void add_liquid_drawables(const Model& model, const Inputs& inputs, const State& state,
                           Workspace& ws, draw::Snapshot& snap) {
   (void)inputs;
-  (void)ws;
   for (std::size_t l = 0; l < model.liquids.size(); ++l) {
     const LiquidModel& m = model.liquids[l];
     const LiquidState& s = state.liquids[l];
@@ -414,6 +462,14 @@ void add_liquid_drawables(const Model& model, const Inputs& inputs, const State&
     snap.focus.add(hi.cast<float>());
     draw::Lines& outline = snap.lines.emplace_back();
     add_box_edges(lo, hi, kDomainColor, outline);
+    if (m.def.section != LiquidSection::none) {
+      // The cells as the state holds them (those a two-way body covers hold no markers).
+      LiquidWorkspace& w = ws.liquids[l];
+      label_cells(m, s, w.flags, w.fill, w.count);
+      if (std::optional<draw::FieldSection> section = liquid_section(m, s, w.flags)) {
+        snap.sections.push_back(std::move(*section));
+      }
+    }
     for (const LiquidBoxDef& box : m.def.solids) {
       const Vec3 a = box.min.cwiseMax(lo), b = box.max.cwiseMin(hi);
       snap.primitives.push_back({.shape = draw::PrimitiveShape::box,

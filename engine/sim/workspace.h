@@ -14,6 +14,7 @@
 #include "figure/figure_impact.h"
 #include "figure/figure_impulse.h"
 #include "figure/figure_workspace.h"
+#include "figure/segment_surface.h"
 #include "figure/stable_pd.h"
 #include "integrate/integrators.h"
 #include "liquid/liquid_step.h"
@@ -69,6 +70,13 @@ struct FiguresWorkspace {
   // impulse events' scratch.
   std::vector<ForceVector> site_forces;
   ImpulseScratch impulse;
+  // A liquid's push on the segments (sim/liquid_segment_loads.h): each segment's surface patches
+  // (per figure, per segment; sized where a scene has liquids), the power of the last rate
+  // evaluation's liquid forces at its velocities [W], for the guard's work, and one figure's
+  // forces when they are measured.
+  std::vector<std::vector<std::vector<SurfacePatch>>> liquid_patches;
+  Real liquid_power = 0;
+  std::vector<ForceVector> liquid_measured;
 };
 
 struct Workspace {
