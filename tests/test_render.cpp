@@ -420,7 +420,7 @@ TEST(Render, AFieldSectionIsDrawnInItsFalseColoursWithAColourBar) {
   OsmesaContext context;
   Renderer renderer(context.functions());
   RenderOptions options;
-  options.width = 640;
+  options.width = 800;
   options.height = 320;
   options.shadows = false;
   options.samples = 1;
@@ -442,11 +442,11 @@ TEST(Render, AFieldSectionIsDrawnInItsFalseColoursWithAColourBar) {
   renderer.read_rgb(rgb);
   // Rows top to bottom: the bottom row of cells (j = 0) is in the lower half of the image.
   auto pixel = [&](int x, int y) {
-    const std::size_t k = 3 * (static_cast<std::size_t>(y) * 640 + static_cast<std::size_t>(x));
+    const std::size_t k = 3 * (static_cast<std::size_t>(y) * 800 + static_cast<std::size_t>(x));
     return Eigen::Vector3f(rgb[k] / 255.0f, rgb[k + 1] / 255.0f, rgb[k + 2] / 255.0f);
   };
-  const Eigen::Vector3f low = pixel(290, 190), high = pixel(350, 190), mid = pixel(350, 130),
-                        none = pixel(290, 130);
+  const Eigen::Vector3f low = pixel(370, 190), high = pixel(430, 190), mid = pixel(430, 130),
+                        none = pixel(370, 130);
   std::printf("cells: low (%.3f %.3f %.3f), high (%.3f %.3f %.3f), mid (%.3f %.3f %.3f)\n", low.x(),
               low.y(), low.z(), high.x(), high.y(), high.z(), mid.x(), mid.y(), mid.z());
   for (int c = 0; c < 3; ++c) {
@@ -458,8 +458,8 @@ TEST(Render, AFieldSectionIsDrawnInItsFalseColoursWithAColourBar) {
   EXPECT_GT((none - section_colour(0)).norm(), 0.2);
   EXPECT_GT((none - section_colour(0.5f)).norm(), 0.2);
   // The colour bar at the top right: its gradient, yellow at the top, purple at the bottom, in a
-  // dark panel. Its bar's left edge is 12 + 150 - 8 pixels from the right edge.
-  const int bar_x = 640 - 12 - 150 + 8 + 9;
+  // dark panel. Its bar's left edge is 12 + 240 - 8 pixels from the right edge.
+  const int bar_x = 800 - 12 - 240 + 8 + 9;
   const int bar_top = 12 + 8 + 20, bar_bottom = bar_top + 180;
   // Up the bar the colour of t = (bottom - y) / height, in steps of 1/32.
   for (const int y : {bar_top + 3, bar_top + 60, bar_top + 120, bar_bottom - 3}) {
@@ -469,11 +469,11 @@ TEST(Render, AFieldSectionIsDrawnInItsFalseColoursWithAColourBar) {
   }
   EXPECT_GT(pixel(bar_x, bar_top + 3).x(), 0.9f);      // yellow at the top
   EXPECT_LT(pixel(bar_x, bar_bottom - 3).y(), 0.05f);  // purple at the bottom
-  EXPECT_NEAR(pixel(640 - 14, 14).x(), 0.12, 0.01);    // the panel's corner
+  EXPECT_NEAR(pixel(800 - 14, 14).x(), 0.12, 0.01);    // the panel's corner
   // The label's glyphs: white pixels in the panel's top line.
   int white = 0;
   for (int y = 12 + 8; y < 12 + 8 + 14; ++y) {
-    for (int x = 640 - 12 - 150 + 8; x < 640 - 12 - 8; ++x) white += pixel(x, y).minCoeff() > 0.9f;
+    for (int x = 800 - 12 - 240 + 8; x < 800 - 12 - 8; ++x) white += pixel(x, y).minCoeff() > 0.9f;
   }
   EXPECT_GT(white, 30);
 }

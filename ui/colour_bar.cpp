@@ -26,7 +26,7 @@ constexpr std::array<std::array<float, 3>, 9> kViridis{{{0.267f, 0.004f, 0.329f}
                                                         {0.992f, 0.906f, 0.145f}}};
 
 // Bar geometry [pixels].
-constexpr float kMargin = 12, kPanelWidth = 150, kBarWidth = 18, kBarHeight = 180, kPad = 8;
+constexpr float kMargin = 12, kPanelWidth = 240, kBarWidth = 18, kBarHeight = 180, kPad = 8;
 constexpr float kTextScale = 2;  // stb_easy_font's glyphs are 7 pixels tall
 constexpr int kGradientSteps = 32;
 

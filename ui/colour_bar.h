@@ -19,7 +19,7 @@ void append_section_triangles(const draw::FieldSection& section, std::vector<flo
 // Appends the section's colour bar as triangles (x, y, 0, r, g, b per vertex) in pixels from the
 // image's top-right corner, x negative to the left, y down: a dark panel, the gradient from low
 // (bottom) to high (top), and the label and the range's ends in a bitmap font (stb_easy_font).
-// Bar `slot` k stands k panels to the left of the first.
+// Bar `slot` k stands k panels to the left of the first; a panel is 240 pixels wide.
 void append_colour_bar(const draw::FieldSection& section, int slot, std::vector<float>& vertices);
 
 }  // namespace pbm

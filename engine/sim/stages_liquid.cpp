@@ -21,7 +21,8 @@ namespace pbm::stages {
 namespace {
 
 const draw::Material kWaterMaterial{{0.16f, 0.45f, 0.85f}, 0.15f};
-// A marker liquid's surface mesh: translucent, so what is under the water shows.
+// A liquid's surface (a marker liquid's mesh, a height field): translucent, so what is under the
+// water shows.
 const draw::Material kWaterSurfaceMaterial{{0.16f, 0.45f, 0.85f}, 0.15f, 0.7f};
 const draw::Material kLiquidSolidMaterial{{0.5f, 0.47f, 0.42f}, 0.9f};
 const draw::Vec3f kMarkerColor{0.25f, 0.55f, 0.95f};
@@ -486,7 +487,7 @@ void add_liquid_drawables(const Model& model, const Inputs& inputs, const State&
       field.nx = g.n.x();
       field.ny = g.n.y();
       field.heights.assign(s.height.begin(), s.height.end());
-      field.material = kWaterMaterial;
+      field.material = kWaterSurfaceMaterial;
     } else if (m.def.surface == SurfaceMethod::height_field) {
       // A 2D liquid's surface (or one whose columns are not along z): the columns' tops joined
       // along the first horizontal axis.
