@@ -47,4 +47,24 @@ struct LoneLiquid {
   }
 };
 
+// The mean height of a liquid's top over its columns along z [m]: each column's highest liquid
+// cell's floor plus its fill (a Full one's whole height), from the labels in ws.
+inline Real mean_surface_height(const LiquidModel& m, const LiquidWorkspace& w) {
+  const MacGrid& g = m.grid;
+  Real sum = 0;
+  for (int j = 1; j <= g.n.y(); ++j) {
+    for (int i = 1; i <= g.n.x(); ++i) {
+      Real top = g.origin.z();
+      for (int k = g.n.z(); k >= 1; --k) {
+        const auto c = static_cast<std::size_t>(g.index(i, j, k));
+        if (!is_liquid(w.flags[c])) continue;
+        top = g.origin.z() + (k - 1 + w.fill[c]) * g.h.z();
+        break;
+      }
+      sum += top;
+    }
+  }
+  return sum / (g.n.x() * g.n.y());
+}
+
 }  // namespace pbm::test

@@ -4,7 +4,8 @@
 // as the patches are refined; in a tank, a sphere on a free joint denser than the liquid sinks at
 // g (1 - rho_l / rho_s) from rest, a box of half the liquid's density floats with half its height
 // submerged, a hinged chain dipped into the water swings and settles without the stability guard
-// refusing the buoyancy's work, and its runs are bit-identical.
+// refusing the buoyancy's work, and its runs are bit-identical. Two-way, a sunken segment
+// displaces its volume and a swinging paddle moves the liquid (one way it does not).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,6 +16,7 @@
 #include "core/quaternion.h"
 #include "figure/figure_build.h"
 #include "figure/segment_surface.h"
+#include "liquid_test_support.h"
 #include "scene/scene_json.h"
 #include "sim/liquid_segment_loads.h"
 #include "sim/simulation.h"
@@ -213,6 +215,87 @@ TEST(LiquidFigure, AChainDippedIntoWaterSwingsAndSettlesUnderTheGuard) {
   // It rests in the water, held up by it: some of it wet.
   EXPECT_GT(sim.stats.liquids.at(0).wetted_area, 0.005);
   EXPECT_EQ(dry.stats.liquids.at(0).wetted_area, 0);
+}
+
+// A tank 0.6 x 0.6 m with water 0.4 m deep, h = 0.025 m, markers, coupled `coupling`, and the
+// figures given.
+std::string two_way_tank(const std::string& coupling, const std::string& figures,
+                         const std::string& resolution = "[24, 24, 28]",
+                         const std::string& y_max = "0.6") {
+  return R"({"name": "tank", "solver": {"fps": 30, "dt": 0.004, "integrator": "rk4"},
+    "obstacles": [{"name": "floor", "kind": "plane", "point": [0, 0, 0], "normal": [0, 0, 1],
+      "size": [2, 2], "elasticity": 20000, "friction": 0.5}],
+    "liquids": [{"name": "water", "domain": {"min": [0, 0, 0], "max": [0.6, )" +
+         y_max + R"(, 0.7]}, "resolution": )" + resolution + R"(, "coupling": ")" + coupling +
+         R"(", "drag": 1, "volume_correction": 0.2,
+      "fluid": [{"box": {"min": [0, 0, 0], "max": [0.6, )" +
+         y_max + R"(, 0.4]}}]}],
+    "figures": [)" +
+         figures + "]}";
+}
+
+TEST(LiquidFigure, TwoWayASunkenSegmentDisplacesItsVolume) {
+  // A box 0.16 x 0.16 x 0.12 m of three times the liquid's density on a free joint, released
+  // with its bottom just over the water: it sinks to the floor.
+  const char* figure = R"({"name": "block", "segments": [{"name": "block",
+      "joint": {"kind": "free", "q0": [0.3, 0.3, 0.47, 1, 0, 0, 0]},
+      "shape": {"kind": "box", "size": [0.08, 0.08, 0.06]}, "density": 3000}]})";
+  Simulation sim(parse_scene(two_way_tank("two_way", figure), "block.json"));
+  const LiquidModel& m = sim.model.liquids[0];
+  const Real area = 0.36, volume = 0.16 * 0.16 * 0.12;
+  const Real level0 = test::mean_surface_height(m, sim.ws.liquids[0]);
+  const Real volume0 = sim.stats.liquids.at(0).volume;
+  for (int f = 0; f < 24; ++f) {
+    const FrameResult res = advance_frame(sim);
+    ASSERT_TRUE(res.ok) << "frame " << f << ": " << res.message;
+  }
+  const Real z = sim.state.q[sim.model.figures[0].model.state_q_offset + 2];
+  EXPECT_LT(z, 0.06 + 0.01) << "the block rests on the floor";
+  const Real rise = test::mean_surface_height(m, sim.ws.liquids[0]) - level0;
+  const int covered = sim.stats.liquids.at(0).step.solid_cells;
+  const Real cells_volume = covered * m.grid.cell_volume();
+  const Real liquid_change = (sim.stats.liquids.at(0).volume - volume0) / area;
+  std::printf(
+      "sunken block: %d cells (%.6f m^3, the block %.6f), the water rose %.5f m "
+      "(volume over area %.5f m, the liquid's own change %.5f m)\n",
+      covered, cells_volume, volume, rise, volume / area, liquid_change);
+  // Its cells are its volume: 6.4 x 6.4 x 4.8 cells, centres inside 6 x 6 x 4 or 7 x 7 x 5.
+  EXPECT_NEAR(cells_volume / volume, 1, 0.25);
+  // The level is the liquid's volume plus the solid's.
+  EXPECT_NEAR(rise, cells_volume / area + liquid_change, 0.002);
+  EXPECT_GT(rise, 0.5 * volume / area);
+}
+
+TEST(LiquidFigure, TwoWayASwingingPaddleMakesWavesOneWayItDoesNot) {
+  // A paddle hinged over a 2D tank, released from horizontal: it swings down through the water.
+  const char* figure = R"({"name": "paddle", "segments": [{"name": "paddle",
+      "joint": {"kind": "revolute", "axis": [0, 1, 0], "position": [0.3, 0.0125, 0.6],
+                "q0": [1.5707963267948966]},
+      "shape": {"kind": "box", "size": [0.02, 0.2, 0.15], "center": [0, 0, -0.2]},
+      "density": 2000}]})";
+  Real fastest[2] = {0, 0}, worst_volume = 0;
+  for (int k = 0; k < 2; ++k) {
+    Simulation sim(
+        parse_scene(two_way_tank(k == 0 ? "two_way" : "one_way", figure, "[24, 1, 28]", "0.025"),
+                    "paddle.json"));
+    const Real volume0 = sim.stats.liquids.at(0).volume;
+    for (int f = 0; f < 30; ++f) {
+      const FrameResult res = advance_frame(sim);
+      ASSERT_TRUE(res.ok) << "frame " << f << ": " << res.message;
+      fastest[k] = std::max(fastest[k], sim.stats.liquids.at(0).max_speed);
+      if (k == 0) {
+        worst_volume =
+            std::max(worst_volume, std::abs(sim.stats.liquids.at(0).volume / volume0 - 1));
+      }
+    }
+  }
+  std::printf(
+      "swinging paddle: the liquid's fastest face %.4f m/s two-way (its volume within %.2f%%), "
+      "%.2g one-way\n",
+      fastest[0], 100 * worst_volume, fastest[1]);
+  EXPECT_GT(fastest[0], 0.2);
+  EXPECT_LT(fastest[1], 1e-6);
+  EXPECT_LT(worst_volume, 0.05);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "deform/body_dynamics.h"
 #include "liquid/cell_labels.h"
 #include "liquid/moving_solids.h"
+#include "liquid_test_support.h"
 #include "scene/scene_json.h"
 #include "sim/simulation.h"
 
@@ -49,26 +50,8 @@ std::string ball_scene(const std::string& surface, const std::string& coupling, 
          num(depth) + "]}}]}]}";
 }
 
-// The mean height of the liquid's top over the tank's columns [m]: each column's highest liquid
-// cell's floor plus its fill (a Full one's whole height).
 Real mean_surface_height(const Simulation& sim) {
-  const LiquidModel& m = sim.model.liquids[0];
-  const LiquidWorkspace& w = sim.ws.liquids[0];
-  const MacGrid& g = m.grid;
-  Real sum = 0;
-  for (int j = 1; j <= g.n.y(); ++j) {
-    for (int i = 1; i <= g.n.x(); ++i) {
-      Real top = g.origin.z();
-      for (int k = g.n.z(); k >= 1; --k) {
-        const auto c = static_cast<std::size_t>(g.index(i, j, k));
-        if (!is_liquid(w.flags[c])) continue;
-        top = g.origin.z() + (k - 1 + w.fill[c]) * g.h.z();
-        break;
-      }
-      sum += top;
-    }
-  }
-  return sum / (g.n.x() * g.n.y());
+  return test::mean_surface_height(sim.model.liquids[0], sim.ws.liquids[0]);
 }
 
 // Advances n frames, each one succeeding; the largest relative change of liquid 0's volume from

@@ -5,11 +5,13 @@
 #include <cstdio>
 #include <memory>
 
+#include "collide/convex_contacts.h"
 #include "collide/obstacle.h"
 #include "deform/body_dynamics.h"
 #include "liquid/cell_labels.h"
 #include "liquid/liquid_probe.h"
 #include "liquid/liquid_surface_mesh.h"
+#include "sim/figure_collisions.h"
 #include "sim/liquid_body_loads.h"
 #include "sim/liquid_section.h"
 #include "sim/liquid_segment_loads.h"
@@ -166,13 +168,52 @@ void collect_obstacle_cells(const LiquidModel& m, const std::vector<ObstacleMode
 
 // Liquid l's moving solids where the bodies (ws.liquid_surfaces) and obstacles are now: what its
 // probe and its measurement see between its substeps.
-void place_liquid_solids(const Model& model, std::size_t l, Workspace& ws) {
+// Two-way: the cells whose centres a figure's segment covers (the exact shape's signed distance,
+// collide/convex_contacts.h), moving with the segment's material there, after the obstacles'
+// in `out`: the figures at the state's pose.
+void collect_segment_cells(const Model& model, const LiquidModel& m, const State& state,
+                           FiguresWorkspace& fw, std::vector<SolidCell>& out) {
+  all_figure_kinematics(model, state.q.data(), state.v.data(), fw);
+  const MacGrid& g = m.grid;
+  for (std::size_t f = 0; f < model.figures.size(); ++f) {
+    const FigureDef& def = model.scene.figures[f];
+    for (std::size_t i = 0; i < def.segments.size(); ++i) {
+      const SpatialTransform& X = fw.worlds[f][i];
+      const ConvexSolid solid = segment_solid(def.segments[i].shape, X);
+      const Box3 box = convex_bounds(solid);
+      Eigen::Vector3i lo = g.cell_of(box.lo), hi = g.cell_of(box.hi);
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = std::max(lo[a], 1);
+        hi[a] = std::min(hi[a], g.n[a]);
+        // A 2D grid's slab: the segment's cells where it crosses the slab's middle.
+        if (a == m.thin_axis) lo[a] = hi[a] = 1;
+      }
+      for (int k = lo.z(); k <= hi.z(); ++k) {
+        for (int j = lo.y(); j <= hi.y(); ++j) {
+          for (int n = lo.x(); n <= hi.x(); ++n) {
+            const int c = g.index(n, j, k);
+            if (m.fixed[static_cast<std::size_t>(c)] != CellFlag::empty) continue;
+            const Vec3 x = g.centre(n, j, k);
+            Vec3 normal;
+            if (!(convex_signed_distance(solid, x, normal) < 0)) continue;
+            out.push_back({c, segment_point_velocity(X, fw.each[f].v[i], x)});
+          }
+        }
+      }
+    }
+  }
+}
+
+void place_liquid_solids(const Model& model, const State& state, std::size_t l, Workspace& ws) {
   MovingSolids& moving = ws.liquids[l].moving;
   clear_moving_solids(moving);
   if (!two_way(model.liquids[l])) return;
   const LiquidModel& m = model.liquids[l];
   collect_obstacle_cells(m, ws.drive.obstacles, ws.liquid_static_obstacle[l],
                          ws.liquid_obstacle_cells);
+  if (!model.figures.empty()) {
+    collect_segment_cells(model, m, state, *ws.figures, ws.liquid_obstacle_cells);
+  }
   for (const SolidCell& cell : ws.liquid_obstacle_cells) {
     mark_solid_cell(m, cell.cell, cell.velocity, moving);
   }
@@ -240,6 +281,12 @@ void advance_liquids(const SubstepContext& c) {
       captured = true;
       collect_obstacle_cells(c.model.liquids[l], c.ws.drive.obstacles,
                              c.ws.liquid_static_obstacle[l], c.ws.liquid_obstacle_cells);
+      // The figures' segments where this substep of theirs ends, as the obstacles (with their
+      // material's velocity).
+      if (!c.model.figures.empty()) {
+        collect_segment_cells(c.model, c.model.liquids[l], c.state, *c.ws.figures,
+                              c.ws.liquid_obstacle_cells);
+      }
       inputs.obstacle_cells = c.ws.liquid_obstacle_cells;
       inputs.surfaces = c.ws.liquid_surfaces;
       inputs.surfaces_time = c.state.time;
@@ -281,7 +328,7 @@ void liquid_probe_start(const SubstepContext& c) {
   // liquid it holds (docs/architecture.md, "Determinism"). The solids where they are now.
   if (any_two_way(c.model)) capture_body_surfaces(c.model, c.state, c.ws);
   for (std::size_t l = 0; l < c.model.liquids.size(); ++l) {
-    place_liquid_solids(c.model, l, c.ws);
+    place_liquid_solids(c.model, c.state, l, c.ws);
     build_liquid_probe(c.model.liquids[l], c.state.liquids[l], c.ws.drive.gravity, c.ws.liquids[l]);
   }
 }
@@ -344,7 +391,7 @@ void measure_liquids(const Model& model, const Inputs& inputs, const State& stat
     out.wetted_area = 0;
     // What the frame's substeps cost (advance_frame starts each attempt afresh).
     out.step = ws.liquid_steps[l];
-    place_liquid_solids(model, l, ws);
+    place_liquid_solids(model, state, l, ws);
     if (model.bodies.empty() && model.figures.empty()) {
       label_cells(m, s, w.flags, w.fill, w.count, &w.moving);
     } else {
@@ -399,7 +446,7 @@ void remove_covered_liquid(const Model& model, State& state, Workspace& ws) {
   if (!any_two_way(model)) return;
   capture_body_surfaces(model, state, ws);
   for (std::size_t l = 0; l < model.liquids.size(); ++l) {
-    place_liquid_solids(model, l, ws);
+    place_liquid_solids(model, state, l, ws);
     const MovingSolids& moving = ws.liquids[l].moving;
     const MacGrid& g = model.liquids[l].grid;
     std::vector<Vec3>& markers = state.liquids[l].markers;

@@ -24,8 +24,9 @@ void size_liquid_bodies(const Model& model, Workspace& ws);
 void liquid_probe_start(const SubstepContext& c);  // step_start
 void liquid_body_forces(const RateContext& c);     // contact_forces
 void liquid_body_work(const SubstepContext& c);    // coupling
-// Two-way liquids start without the markers their scene puts inside bodies and obstacles (the
-// solid occupies that space); ws.drive as measure_state leaves it at the state's time.
+// Two-way liquids start without the markers their scene puts inside bodies, obstacles and
+// figures' segments (the solid occupies that space); ws.drive as measure_state leaves it at the
+// state's time.
 void remove_covered_liquid(const Model& model, State& state, Workspace& ws);
 std::string describe_liquid_failure(const Model& model, const State& state);
 void add_liquid_drawables(const Model& model, const Inputs& inputs, const State& state,
