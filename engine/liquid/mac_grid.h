@@ -5,6 +5,7 @@
 // u(i, j, k) is the face between cells i and i+1 along x (u_{i+1/2,j,k}), v and w likewise.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -70,21 +71,62 @@ struct MacField {
 };
 
 // The 8 samples of component `axis` around world point x: from index base (per axis) to base + 1
-// at fractions frac (clamped to the grid; a 2D grid's thin axis has fraction 0).
-void component_stencil(const MacGrid& grid, int axis, const Vec3& x, int (&base)[3],
-                       Real (&frac)[3]);
+// at fractions frac (clamped to the grid; a 2D grid's thin axis has fraction 0). Inline, with the
+// blend below: the advection's and the markers' inner loop (40% of a 32^3 dam break's time when
+// they were calls into mac_grid.cpp, `perf record pbm simulate`).
+inline void component_stencil(const MacGrid& grid, int axis, const Vec3& x, int (&base)[3],
+                              Real (&frac)[3]) {
+  // Grid coordinates in which the component's samples sit at integers: the faces of axis `axis`
+  // at i * h (index i), the other axes' samples at the cells' centres (index j, centre j - 1/2).
+  for (int a = 0; a < 3; ++a) {
+    Real g = (x[a] - grid.origin[a]) / grid.h[a] + (a == axis ? 0.0 : 0.5);
+    // Faces 0..n along the axis, cells 0..n+1 across it (the ghosts carry the walls' values).
+    const int last = a == axis ? grid.n[a] : grid.n[a] + 1;
+    // A NaN position (a state the guard will reject) reads the first sample, not past the array.
+    g = g >= 0 ? std::min(g, static_cast<Real>(last)) : 0.0;
+    int b = static_cast<int>(g);
+    if (b >= last) b = last - 1;
+    if (last == 0) b = 0;
+    base[a] = b;
+    frac[a] = last == 0 ? 0.0 : g - b;
+  }
+}
 
 // The trilinear blend of `values` over the 8 samples from index base (per axis) to base + 1 at
-// fractions frac; a zero weight reads nothing (a 2D grid's thin axis).
-Real blend_trilinear(const MacGrid& grid, const std::vector<Real>& values, const int (&base)[3],
-                     const Real (&frac)[3]);
+// fractions frac. Every sample is read, a zero weight's too (a 2D grid's thin axis: its ghost
+// layer), so a NaN anywhere in the stencil reads as NaN (the guard then refuses the state).
+inline Real blend_trilinear(const MacGrid& grid, const std::vector<Real>& values,
+                            const int (&base)[3], const Real (&frac)[3]) {
+  // Along x, then y, then z, without a branch on the weights: 22% off a 32^3 dam break's time
+  // against the 8-term sum that skipped zero weights (`time pbm simulate`, 3.6-3.9 s -> 2.9 s).
+  const Real* v = values.data() + grid.index(base[0], base[1], base[2]);
+  const int sx = grid.sx, sy = grid.sy, sz = grid.sz;
+  const Real fx = frac[0], fy = frac[1], fz = frac[2];
+  const Real c00 = v[0] + fx * (v[sx] - v[0]);
+  const Real c10 = v[sy] + fx * (v[sy + sx] - v[sy]);
+  const Real c01 = v[sz] + fx * (v[sz + sx] - v[sz]);
+  const Real c11 = v[sz + sy] + fx * (v[sz + sy + sx] - v[sz + sy]);
+  const Real c0 = c00 + fy * (c10 - c00);
+  const Real c1 = c01 + fy * (c11 - c01);
+  return c0 + fz * (c1 - c0);
+}
+
+// One component (axis) at a world point.
+inline Real interpolate_component(const MacGrid& grid, const std::vector<Real>& u, int axis,
+                                  const Vec3& x) {
+  int base[3];
+  Real frac[3];
+  component_stencil(grid, axis, x, base, frac);
+  return blend_trilinear(grid, u, base, frac);
+}
 
 // The velocity at a world point: each component interpolated trilinearly from the faces that
 // carry it (the area weighting of fig. 16.3, volume weighting in 3D). Points outside the domain
 // are clamped to it.
-Vec3 interpolate_velocity(const MacGrid& grid, const std::vector<Real> (&u)[3], const Vec3& x);
-// One component (axis) at a world point.
-Real interpolate_component(const MacGrid& grid, const std::vector<Real>& u, int axis,
-                           const Vec3& x);
+inline Vec3 interpolate_velocity(const MacGrid& grid, const std::vector<Real> (&u)[3],
+                                 const Vec3& x) {
+  return {interpolate_component(grid, u[0], 0, x), interpolate_component(grid, u[1], 1, x),
+          interpolate_component(grid, u[2], 2, x)};
+}
 
 }  // namespace pbm
