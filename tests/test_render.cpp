@@ -378,15 +378,24 @@ namespace {
 
 // A translucent solid (Material::opacity < 1, a liquid's surface) shows what lies behind it,
 // blended by its opacity; at opacity 1 it hides it.
+// Options without shadows, width x height, and a camera 5 m down -y looking at the origin.
+RenderOptions plain_options(int width, int height) {
+  RenderOptions options;
+  options.width = width;
+  options.height = height;
+  options.shadows = false;
+  return options;
+}
+Camera front_camera() {
+  return camera_from_view(
+      {.position = {0, -5, 0}, .target = {0, 0, 0}, .up = {0, 0, 1}, .fov = 30});
+}
+
 TEST(Render, ATranslucentSolidShowsWhatIsBehindIt) {
   OsmesaContext context;
   Renderer renderer(context.functions());
-  RenderOptions options;
-  options.width = 64;
-  options.height = 64;
-  options.shadows = false;
-  const Camera camera =
-      camera_from_view({.position = {0, -5, 0}, .target = {0, 0, 0}, .up = {0, 0, 1}, .fov = 30});
+  const RenderOptions options = plain_options(64, 64);
+  const Camera camera = front_camera();
   // opacity < 0: no front box.
   auto centre_pixel = [&](float opacity) {
     draw::Snapshot snap;
@@ -419,13 +428,9 @@ TEST(Render, ATranslucentSolidShowsWhatIsBehindIt) {
 TEST(Render, AFieldSectionIsDrawnInItsFalseColoursWithAColourBar) {
   OsmesaContext context;
   Renderer renderer(context.functions());
-  RenderOptions options;
-  options.width = 800;
-  options.height = 320;
-  options.shadows = false;
+  RenderOptions options = plain_options(800, 320);
   options.samples = 1;
-  const Camera camera =
-      camera_from_view({.position = {0, -5, 0}, .target = {0, 0, 0}, .up = {0, 0, 1}, .fov = 30});
+  const Camera camera = front_camera();
   // A 2 x 2 m section facing the camera in 2 x 2 cells: low, high; NaN, mid.
   draw::Snapshot snap;
   snap.sections.push_back({.label = "pressure [Pa]",
