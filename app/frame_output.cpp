@@ -197,6 +197,8 @@ std::string frame_stats_json(const World& world, const FrameStats& s, long frame
                          {"foam", ls.foam},
                          {"spray_emitted", st.spray_emitted},
                          {"foam_landed", st.foam_landed},
+                         {"chain_joins", st.chain_joins},
+                         {"chain_loops_dropped", st.chain_loops_dropped},
                          {"solve_seconds", st.solve_seconds}});
       if (!model.bodies.empty()) {
         const Vec3& f = ls.body_force;

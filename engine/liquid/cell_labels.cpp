@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "liquid/moving_solids.h"
+#include "liquid/surface_chains.h"
 
 namespace pbm {
 
@@ -62,6 +63,8 @@ void label_cells(const LiquidModel& model, const LiquidState& state, std::vector
   std::fill(count.begin(), count.end(), 0);
   if (model.def.surface == SurfaceMethod::height_field) {
     label_from_height(model, state, flags, fill);
+  } else if (model.def.surface == SurfaceMethod::chains) {
+    label_from_chains(model, state.chain, state.chain_next, flags, fill, count);
   } else {
     for (const Vec3& x : state.markers) {
       const Eigen::Vector3i c = g.cell_of(x);
@@ -91,8 +94,8 @@ void label_cells(const LiquidModel& model, const LiquidState& state, std::vector
         }
         if (open) {
           flags[s] = CellFlag::surface;
-        } else {
-          fill[s] = 1;
+        } else if (model.def.surface != SurfaceMethod::chains) {
+          fill[s] = 1;  // chains' cells keep the exact part of them the liquid fills
         }
       }
     }
@@ -103,8 +106,7 @@ Real liquid_volume(const LiquidModel& model, const std::vector<CellFlag>& flags,
                    const std::vector<Real>& fill) {
   Real cells = 0;
   for (std::size_t c = 0; c < flags.size(); ++c) {
-    if (flags[c] == CellFlag::full) cells += 1;
-    if (flags[c] == CellFlag::surface) cells += fill[c];
+    if (is_liquid(flags[c])) cells += fill[c];
   }
   return cells * model.grid.cell_volume();
 }

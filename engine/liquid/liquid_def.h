@@ -19,9 +19,10 @@ enum class LiquidAdvection { book, semi_lagrangian, flip };
 // The pressure solve: the book's cell-by-cell relaxation (16.5)-(16.9), or conjugate gradients on
 // the same system preconditioned by incomplete Cholesky MIC(0) or by a multigrid V-cycle.
 enum class PressureSolver { relaxation, mic_pcg, mgpcg };
-// How the liquid's position is tracked (16.3): marker particles (16.3.1) or a height field
-// (16.3.3) for surfaces that do not overturn.
-enum class SurfaceMethod { markers, height_field };
+// How the liquid's position is tracked (16.3): marker particles (16.3.1), a height field
+// (16.3.3) for surfaces that do not overturn, or, in 2D, free-surface marker chains (16.3.2:
+// closed loops of markers along the liquid's boundaries, liquid/surface_chains.h).
+enum class SurfaceMethod { markers, height_field, chains };
 // The walls of the domain (16.2.2): no-slip (tangential velocity zero at the wall) or free-slip (a
 // plane of symmetry for the tangential motion).
 enum class WallKind { free_slip, no_slip };
@@ -124,7 +125,8 @@ struct LiquidDef {
   // (0: the book's div u = 0 exactly). Counters the slow loss of volume of markers advected
   // through a discrete field (tests/test_liquid_solver.cpp: 21% in a 4 s dam break at 2 x 2
   // markers a cell without it, under 1% at 0.2), at some cost in the waves' period (0.05 makes
-  // the sloshing period's error grow under refinement).
+  // the sloshing period's error grow under refinement). With chains: the share of the drift of
+  // the area they enclose from their starting area restored per substep (a uniform divergence).
   Real volume_correction = 0;
   // Spray and foam (liquid/spray.h; markers only): spray leaves Surface cells whose liquid rises
   // faster than spray_speed [m/s] (0: no spray), spray_rate particles per such cell per second,

@@ -103,6 +103,49 @@ void compile_surface_waves(LiquidModel& m, const Vec3& gravity, const std::strin
   }
 }
 
+// Chains (16.3.2) are closed loops in a plane, one around each fluid region, moved by the flow:
+// what would add or take liquid anywhere else, or a third dimension, they cannot follow.
+void check_chains(const LiquidDef& def, const std::string& file, const std::string& path) {
+  int thin = -1, thin_axes = 0;
+  for (int a = 0; a < 3; ++a) {
+    if (def.resolution[a] == 1) {
+      thin = a;
+      ++thin_axes;
+    }
+  }
+  if (thin_axes != 1) {
+    throw Error(file, path + ".surface",
+                "chains: the book's free-surface chains are 2D, a resolution of 1 along exactly "
+                "one axis; a 3D liquid takes \"markers\"");
+  }
+  if (!def.inflows.empty()) {
+    throw Error(file, path + ".inflows",
+                "chains cannot grow a loop from an inflow; surface \"markers\" releases liquid");
+  }
+  if (!def.outflows.empty()) {
+    throw Error(file, path + ".outflows",
+                "chains cannot open a loop at an outflow; surface \"markers\" drains liquid");
+  }
+  if (def.spray_speed > 0) {
+    throw Error(file, path + ".spray_speed", "spray leaves marker particles (surface \"markers\")");
+  }
+  const int a0 = thin == 0 ? 1 : 0, a1 = thin == 2 ? 1 : 2;
+  for (std::size_t t = 1; t < def.fluid.size(); ++t) {
+    for (std::size_t s = 0; s < t; ++s) {
+      const LiquidBoxDef& p = def.fluid[s].box;
+      const LiquidBoxDef& q = def.fluid[t].box;
+      const bool overlap = std::min(p.max[a0], q.max[a0]) > std::max(p.min[a0], q.min[a0]) &&
+                           std::min(p.max[a1], q.max[a1]) > std::max(p.min[a1], q.min[a1]);
+      if (overlap) {
+        throw Error(file, path + ".fluid[" + std::to_string(t) + "]",
+                    "overlaps fluid[" + std::to_string(s) +
+                        "]: chains trace each region's boundary, so regions may touch but not "
+                        "overlap");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 Real surface_wave_pressure(const LiquidModel& model, const Vec3& x, Real t) {
@@ -129,6 +172,7 @@ LiquidModel build_liquid_model(const LiquidDef& def, const Vec3& gravity, const 
                 "flip: the markers carry the velocity, and a height field has none (surface "
                 "\"markers\")");
   }
+  if (def.surface == SurfaceMethod::chains) check_chains(def, file, path);
   LiquidModel m;
   m.def = def;
   const Vec3 extent = def.domain.max - def.domain.min;
@@ -191,6 +235,8 @@ LiquidModel build_liquid_model(const LiquidDef& def, const Vec3& gravity, const 
   }
   m.markers_per_cell = 1;
   for (int a = 0; a < 3; ++a) m.markers_per_cell *= a == m.thin_axis ? 1 : def.markers_per_axis;
+  // Chains are one surface each, like a height field's: a body cannot push them (coupled one
+  // way).
   m.two_way = def.coupling == LiquidCoupling::two_way && def.surface == SurfaceMethod::markers;
   m.vertical_axis = 2;
   if (gravity.squaredNorm() > 0) gravity.cwiseAbs().maxCoeff(&m.vertical_axis);

@@ -5,6 +5,7 @@
 
 #include "core/bits.h"
 #include "liquid/cell_labels.h"
+#include "liquid/surface_chains.h"
 
 namespace pbm {
 
@@ -132,6 +133,12 @@ LiquidState initial_liquid_state(const LiquidModel& model, const Vec3& gravity) 
   seed_velocity(model, s.velocity);
   if (model.def.surface == SurfaceMethod::height_field) {
     seed_height(model, s.height);
+  } else if (model.def.surface == SurfaceMethod::chains) {
+    seed_chains(model, s.chain, s.chain_next);
+    // The seeded loops renumbered and their long links split as every substep leaves them.
+    ChainScratch scratch;
+    (void)remesh_chains(model, s.chain, s.chain_next, scratch);
+    s.chain_area = chains_area(model, s.chain, s.chain_next);
   } else {
     seed_markers(model, s.markers);
     // Room for the inflows' markers up to twice a full grid's: releasing allocates nothing.
@@ -158,6 +165,9 @@ void hash_liquid_state(const LiquidState& s, std::uint64_t& h) {
   mix(s.pressure.data(), sizeof(Real) * s.pressure.size());
   mix(s.markers.data(), sizeof(Vec3) * s.markers.size());
   mix(s.marker_velocity.data(), sizeof(Vec3) * s.marker_velocity.size());
+  mix(s.chain.data(), sizeof(Vec3) * s.chain.size());
+  mix(s.chain_next.data(), sizeof(int) * s.chain_next.size());
+  mix(&s.chain_area, sizeof s.chain_area);
   mix(s.spray.data(), sizeof(Vec3) * s.spray.size());
   mix(s.spray_velocity.data(), sizeof(Vec3) * s.spray_velocity.size());
   mix(s.foam.data(), sizeof(Vec3) * s.foam.size());
@@ -177,7 +187,8 @@ std::size_t liquid_state_bytes(const LiquidState& s) {
   return bytes + sizeof(Real) * (s.pressure.size() + s.height.size() + s.released.size()) +
          sizeof(Vec3) * (s.markers.size() + s.marker_velocity.size() + s.spray.size() +
                          s.spray_velocity.size() + s.foam.size()) +
-         sizeof(Real) * s.foam_age.size();
+         sizeof(Real) * s.foam_age.size() + sizeof(Vec3) * s.chain.size() +
+         sizeof(int) * s.chain_next.size();
 }
 
 }  // namespace pbm

@@ -15,6 +15,12 @@ struct LiquidState {
   MacField velocity;  // u, v, w on the faces [m/s]
   std::vector<Real> pressure;  // kinematic pressure p / rho at the centres [m^2/s^2] (16.1)
   std::vector<Vec3> markers;   // marker particles (16.3.1) [m]
+  // Free-surface marker chains (16.3.2, liquid/surface_chains.h): the markers [m] and each one's
+  // next on its loop.
+  std::vector<Vec3> chain;
+  std::vector<int> chain_next;
+  Real chain_area =
+      0;  // the area the chains enclosed at the start, which volume_correction keeps [m^2]
   // Each marker's velocity with advection flip (empty otherwise) [m/s].
   std::vector<Vec3> marker_velocity;
   // Spray in the air and foam on the surface (liquid/spray.h) [m], [m/s], [s].

@@ -9,6 +9,7 @@
 #include "liquid/momentum.h"
 #include "liquid/particle_transfer.h"
 #include "liquid/spray.h"
+#include "liquid/surface_chains.h"
 #include "liquid/surface_tracking.h"
 
 namespace pbm {
@@ -122,6 +123,17 @@ void liquid_substep(const LiquidModel& model, const LiquidInputs& inputs, Real d
   set_surface_velocities(model, ws.flags, field);
   extrapolate_velocities(model, ws.flags, kExtrapolationLayers, ws.known, ws.next_known, field);
   for (int a = 0; a < 3; ++a) ws.previous.u[a] = field.u[a];
+  // Chains drift in area through the interpolated field (3.5% in 4 s of a dam break,
+  // tests/test_liquid_chains.cpp): the liquid expands or contracts uniformly by the knob's share
+  // of the drift each substep, a divergence of (A0 - A) / (A dt) restoring all of it.
+  ws.chain_divergence = 0;
+  if (model.def.surface == SurfaceMethod::chains && model.def.volume_correction > 0) {
+    const Real area = chains_area(model, state.chain, state.chain_next);
+    if (area > 0) {
+      ws.chain_divergence = model.def.volume_correction *
+                            std::clamp((state.chain_area - area) / area, -1.0, 1.0) / dt;
+    }
+  }
   // The system of this substep's labels; its ghost-fluid scales also enter the momentum's
   // pressure gradient.
   const bool dirichlet = build_pressure_system(model, dt, ws);
@@ -150,6 +162,14 @@ void liquid_substep(const LiquidModel& model, const LiquidInputs& inputs, Real d
   // 8: the surface.
   if (model.def.surface == SurfaceMethod::height_field) {
     advance_height_field(model, field, dt, state, ws);
+  } else if (model.def.surface == SurfaceMethod::chains) {
+    advect_chains(model, field, dt, state.chain);
+    const ChainRemeshStats remesh = remesh_chains(model, state.chain, state.chain_next, ws.chains);
+    stats.chain_inserted += remesh.inserted;
+    stats.chain_deleted += remesh.deleted;
+    stats.chain_joins += remesh.joined;
+    stats.chain_loops_dropped += remesh.loops_dropped;
+    stats.chain_full += remesh.full ? 1 : 0;
   } else {
     // The markers' velocities take the substep's change before they move with it.
     if (carried) grid_to_markers(model, ws.previous, field, state.markers, state.marker_velocity);

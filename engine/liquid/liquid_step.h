@@ -24,7 +24,12 @@ struct LiquidStepStats {
   int pushed = 0;               // markers pushed out of them (liquid/moving_solids.h)
   int spray_emitted = 0;        // spray particles released (liquid/spray.h)
   int foam_landed = 0;          // spray fallen back onto the liquid as foam
-  double solve_seconds = 0;     // wall time in the pressure solves (a cost, never a result)
+  // Chains (liquid/surface_chains.h): markers inserted on long links, deleted as too close,
+  // joins of surfaces meeting, loops dropped below three markers, substeps whose insertion
+  // stopped at the capacity.
+  int chain_inserted = 0, chain_deleted = 0, chain_joins = 0, chain_loops_dropped = 0;
+  int chain_full = 0;
+  double solve_seconds = 0;  // wall time in the pressure solves (a cost, never a result)
 };
 
 struct LiquidInputs {

@@ -5,6 +5,7 @@
 #include <openvdb/tools/LevelSetRebuild.h>
 #include <openvdb/tools/MeshToVolume.h>
 #include <openvdb/tools/ParticlesToLevelSet.h>
+#include <openvdb/tools/SignedFloodFill.h>
 #include <openvdb/tools/VolumeToMesh.h>
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include <stdexcept>
 
 #include "liquid/cell_labels.h"
+#include "liquid/surface_chains.h"
 
 namespace pbm {
 
@@ -153,6 +155,93 @@ openvdb::FloatGrid::Ptr height_field_level_set(const LiquidModel& model, const L
                                                             kHalfWidth);
 }
 
+// The chains' liquid as a level set: the signed distance to the loops in the plane (negative
+// where their winding is positive, by the crossings of each row of voxels), intersected with the
+// grid's slab across the thin axis; set in the narrow band, the signs beyond flood-filled.
+openvdb::FloatGrid::Ptr chains_level_set(const LiquidModel& model, const LiquidState& state,
+                                         Real voxel) {
+  const ChainPlane plane = chain_plane(model);
+  const MacGrid& g = model.grid;
+  const Real band = kHalfWidth * voxel;
+  auto grid = openvdb::createLevelSet<openvdb::FloatGrid>(voxel, kHalfWidth);
+  const std::vector<Vec3>& x = state.chain;
+  const std::vector<int>& next = state.chain_next;
+  // Voxel (i, j, k) sits at (i, j, k) * voxel (the transform's); the plane's pixels cover the
+  // domain and a band beyond it.
+  auto lowest = [&](Real at) { return static_cast<int>(std::floor((at - band) / voxel)) - 1; };
+  auto highest = [&](Real at) { return static_cast<int>(std::ceil((at + band) / voxel)) + 1; };
+  const int i0 = lowest(g.origin[plane.a0]),
+            i1 = highest(g.origin[plane.a0] + g.n[plane.a0] * g.h[plane.a0]);
+  const int j0 = lowest(g.origin[plane.a1]),
+            j1 = highest(g.origin[plane.a1] + g.n[plane.a1] * g.h[plane.a1]);
+  const Real t0 = g.origin[plane.thin], t1 = t0 + g.h[plane.thin];
+  const int k0 = lowest(t0), k1 = highest(t1);
+  const int ni = i1 - i0 + 1, nj = j1 - j0 + 1;
+  std::vector<Real> distance(static_cast<std::size_t>(ni) * static_cast<std::size_t>(nj), band);
+  for (std::size_t m = 0; m < x.size(); ++m) {
+    const Vec3& a = x[m];
+    const Vec3& b = x[static_cast<std::size_t>(next[m])];
+    const Real ax = a[plane.a0], ay = a[plane.a1], bx = b[plane.a0], by = b[plane.a1];
+    if (!std::isfinite(ax + ay + bx + by)) continue;
+    const Real dx = bx - ax, dy = by - ay, length2 = dx * dx + dy * dy;
+    const int pi0 = std::max(i0, static_cast<int>(std::floor((std::min(ax, bx) - band) / voxel)));
+    const int pi1 = std::min(i1, static_cast<int>(std::ceil((std::max(ax, bx) + band) / voxel)));
+    const int pj0 = std::max(j0, static_cast<int>(std::floor((std::min(ay, by) - band) / voxel)));
+    const int pj1 = std::min(j1, static_cast<int>(std::ceil((std::max(ay, by) + band) / voxel)));
+    for (int j = pj0; j <= pj1; ++j) {
+      for (int i = pi0; i <= pi1; ++i) {
+        const Real px = i * voxel - ax, py = j * voxel - ay;
+        const Real t = length2 > 0 ? std::clamp((px * dx + py * dy) / length2, 0.0, 1.0) : 0.0;
+        const Real d = std::hypot(px - t * dx, py - t * dy);
+        Real& stored = distance[static_cast<std::size_t>((i - i0) + ni * (j - j0))];
+        stored = std::min(stored, d);
+      }
+    }
+  }
+  // Inside where the loops wind positively: along each row, the winding right of a pixel is the
+  // sum of the directions of the crossings right of it.
+  std::vector<std::pair<Real, int>> crossings;
+  openvdb::FloatGrid::Accessor access = grid->getAccessor();
+  for (int j = j0; j <= j1; ++j) {
+    const Real y = j * voxel;
+    crossings.clear();
+    for (std::size_t m = 0; m < x.size(); ++m) {
+      const Vec3& a = x[m];
+      const Vec3& b = x[static_cast<std::size_t>(next[m])];
+      const Real ay = a[plane.a1], by = b[plane.a1];
+      if ((ay <= y) == (by <= y)) continue;  // a NaN never crosses
+      const Real at = a[plane.a0] + (y - ay) / (by - ay) * (b[plane.a0] - a[plane.a0]);
+      crossings.emplace_back(at, by > ay ? 1 : -1);
+    }
+    std::sort(crossings.begin(), crossings.end());
+    int winding = 0;
+    for (const auto& c : crossings) winding += c.second;
+    std::size_t passed = 0;
+    for (int i = i0; i <= i1; ++i) {
+      const Real px = i * voxel;
+      while (passed < crossings.size() && crossings[passed].first < px) {
+        winding -= crossings[passed++].second;
+      }
+      const Real d = distance[static_cast<std::size_t>((i - i0) + ni * (j - j0))];
+      const Real in_plane = winding > 0 ? -d : d;
+      for (int k = k0; k <= k1; ++k) {
+        const Real t = k * voxel;
+        const Real across = std::max(t0 - t, t - t1);  // negative inside the slab
+        const Real value =
+            in_plane > 0 && across > 0 ? std::hypot(in_plane, across) : std::max(in_plane, across);
+        if (std::abs(value) >= band) continue;
+        openvdb::Coord ijk;
+        ijk[plane.a0] = i;
+        ijk[plane.a1] = j;
+        ijk[plane.thin] = k;
+        access.setValue(ijk, static_cast<float>(value));
+      }
+    }
+  }
+  openvdb::tools::signedFloodFill(grid->tree());
+  return grid;
+}
+
 void write_vdb(openvdb::FloatGrid::Ptr grid, const std::string& path) {
   namespace fs = std::filesystem;
   const std::string temporary = path + ".tmp";
@@ -186,9 +275,11 @@ LiquidSurfaceMesh liquid_surface_mesh(const LiquidModel& model, const LiquidStat
     if (a != model.thin_axis) cell = std::min(cell, g.h[a]);
   }
   const bool markers = model.def.surface == SurfaceMethod::markers;
-  const Real fraction = options.voxel > 0 ? options.voxel
-                        : markers         ? 0.5 / model.def.markers_per_axis
-                                          : 0.5;
+  const bool chains = model.def.surface == SurfaceMethod::chains;
+  // Chains: half their spacing (a distance to the links, no spheres to round off).
+  const Real fraction = options.voxel > 0   ? options.voxel
+                        : markers || chains ? 0.5 / model.def.markers_per_axis
+                                            : 0.5;
   Real voxel = fraction * cell;
   // A 2D liquid's slab is one cell thick: four voxels across it at least (its four long edges'
   // rounding then takes 9% of its volume, 5% at eight voxels, tests/test_liquid_surface_mesh.cpp).
@@ -197,9 +288,10 @@ LiquidSurfaceMesh liquid_surface_mesh(const LiquidModel& model, const LiquidStat
   }
   LiquidSurfaceMesh mesh;
   mesh.voxel_size = voxel;
-  if (markers && state.markers.empty()) return mesh;
-  openvdb::FloatGrid::Ptr grid = markers ? markers_level_set(model, state, voxel)
-                                         : height_field_level_set(model, state, voxel);
+  if ((markers && state.markers.empty()) || (chains && state.chain.empty())) return mesh;
+  openvdb::FloatGrid::Ptr grid = markers  ? markers_level_set(model, state, voxel)
+                                 : chains ? chains_level_set(model, state, voxel)
+                                          : height_field_level_set(model, state, voxel);
   if (options.smoothing > 0) {
     openvdb::tools::LevelSetFilter<openvdb::FloatGrid> filter(*grid);
     for (int pass = 0; pass < options.smoothing; ++pass) filter.meanCurvature();

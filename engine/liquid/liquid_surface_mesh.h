@@ -1,8 +1,9 @@
 // The liquid's surface as a triangle mesh for display and export (16.3), from a narrow-band level
 // set of the liquid built with OpenVDB: its markers rasterized as spheres
-// (tools::ParticlesToLevelSet), or its height field's closed column mesh converted
-// (tools::meshToLevelSet); then smoothed (tools::LevelSetFilter) and meshed at its zero crossing
-// (tools::volumeToMesh). The level set can also be written as a .vdb file that Blender and
+// (tools::ParticlesToLevelSet), its height field's closed column mesh converted
+// (tools::meshToLevelSet), or its chains' signed distance set in the narrow band
+// (tools::signedFloodFill beyond); then smoothed (tools::LevelSetFilter) and meshed at its zero
+// crossing (tools::volumeToMesh). The level set can also be written as a .vdb file that Blender and
 // Houdini open. Display only: nothing here changes a later frame.
 #pragma once
 

@@ -8,6 +8,7 @@
 #include "liquid/liquid_model.h"
 #include "liquid/moving_solids.h"
 #include "liquid/pressure_multigrid.h"
+#include "liquid/surface_chains.h"
 
 namespace pbm {
 
@@ -27,7 +28,11 @@ struct LiquidWorkspace {
   std::vector<Real> face_scale[3];           // s_f of each cell's + face along each axis
   std::vector<Real> dp, r, z, s, q, precon;  // conjugate gradients' vectors, MIC(0)'s factor
   std::vector<Real> height_next;             // the height field's update (16.12)
-  std::vector<Vec3> inflow_velocity;         // each inflow's this substep (LiquidInputs)
+  ChainScratch chains;                       // the chains' remeshing (liquid/surface_chains.h)
+  // With chains and volume_correction: the divergence every Full cell is solved to this substep
+  // [1/s], the share of the area's drift from LiquidState::chain_area the knob restores.
+  Real chain_divergence = 0;
+  std::vector<Vec3> inflow_velocity;  // each inflow's this substep (LiquidInputs)
   MultigridHierarchy multigrid;
   // The cells bodies and obstacles cover (two-way coupling), set before each substep and each
   // probe from where they are then.

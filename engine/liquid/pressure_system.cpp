@@ -43,6 +43,8 @@ bool build_pressure_system(const LiquidModel& model, Real dt, LiquidWorkspace& w
           const Real excess =
               ws.count[static_cast<std::size_t>(c)] / static_cast<Real>(model.markers_per_cell) - 1;
           target = model.def.volume_correction / dt * std::clamp(excess, -1.0, 1.0);
+        } else if (model.def.surface == SurfaceMethod::chains) {
+          target = ws.chain_divergence;
         }
         ws.target[static_cast<std::size_t>(c)] = target;
       }

@@ -69,8 +69,10 @@ inline constexpr NameTable<PressureSolver, 3> kPressureSolverNames{
     {{"relaxation", PressureSolver::relaxation},
      {"mic_pcg", PressureSolver::mic_pcg},
      {"mgpcg", PressureSolver::mgpcg}}};
-inline constexpr NameTable<SurfaceMethod, 2> kSurfaceMethodNames{
-    {{"markers", SurfaceMethod::markers}, {"height_field", SurfaceMethod::height_field}}};
+inline constexpr NameTable<SurfaceMethod, 3> kSurfaceMethodNames{
+    {{"markers", SurfaceMethod::markers},
+     {"height_field", SurfaceMethod::height_field},
+     {"chains", SurfaceMethod::chains}}};
 inline constexpr NameTable<LiquidDisplay, 3> kLiquidDisplayNames{
     {{"surface", LiquidDisplay::surface},
      {"markers", LiquidDisplay::markers},

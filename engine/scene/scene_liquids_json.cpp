@@ -189,8 +189,8 @@ constexpr auto kLiquidFields = std::to_array<Field<LiquidDef>>({
                         "gradients with MIC(0) or a multigrid preconditioner."}),
     choice<&LiquidDef::surface, kSurfaceMethodNames>(
         {.key = "surface",
-         .description = "markers (16.3.1), or a height field (16.3.3) for surfaces that do not "
-                        "overturn."}),
+         .description = "markers (16.3.1), a height field (16.3.3) for surfaces that do not "
+                        "overturn, or free-surface marker chains (16.3.2, 2D only)."}),
     choice<&LiquidDef::display, kLiquidDisplayNames>(
         {.key = "display",
          .description = "What is drawn of a marker liquid: its surface (a translucent mesh of "
@@ -246,7 +246,8 @@ constexpr auto kLiquidFields = std::to_array<Field<LiquidDef>>({
         {.key = "volume_correction",
          .range = kUnitInterval,
          .description = "Fraction of the markers' excess density the solve pushes apart per "
-                        "substep (0: div u = 0 exactly, the book's)."}),
+                        "substep, or of the chains' drift from their starting area it restores "
+                        "(0: div u = 0 exactly, the book's)."}),
     value<&LiquidDef::spray_speed>(
         {.key = "spray_speed",
          .unit = "m/s",

@@ -419,7 +419,7 @@ void measure_liquids(const Model& model, const Inputs& inputs, const State& stat
       }
     }
     out.volume = liquid_volume(m, w.flags, w.fill);
-    out.markers = static_cast<int>(s.markers.size());
+    out.markers = static_cast<int>(s.markers.size() + s.chain.size());
     out.spray = static_cast<int>(s.spray.size());
     out.foam = static_cast<int>(s.foam.size());
     const MacGrid& g = m.grid;
@@ -483,6 +483,9 @@ std::string describe_liquid_failure(const Model& model, const State& state) {
     }
     if (const long k = first_not_finite(s.markers); k >= 0) {
       return name + ": marker " + std::to_string(k) + " became NaN or infinite";
+    }
+    if (const long k = first_not_finite(s.chain); k >= 0) {
+      return name + ": chain marker " + std::to_string(k) + " became NaN or infinite";
     }
     if (first_not_finite(s.height) >= 0) return name + ": the height field became NaN";
     if (s.overrun) {
@@ -554,7 +557,7 @@ void add_liquid_drawables(const Model& model, const Inputs& inputs, const State&
           surface.colors.push_back(kWaterMaterial.color);
         }
       }
-    } else if (!s.markers.empty()) {
+    } else if (!s.markers.empty() || !s.chain.empty()) {
       const LiquidDisplay display = m.def.display;
       if (display != LiquidDisplay::markers) {
         // The surface around the markers, from their level set (16.3.1, liquid_surface_mesh.h).
@@ -582,11 +585,22 @@ void add_liquid_drawables(const Model& model, const Inputs& inputs, const State&
         points.layer = draw::Layer::scene;
       }
       if (display == LiquidDisplay::surface) continue;
+      if (!s.chain.empty()) {
+        // The chains are the surface (16.3.2): their links and markers, as the book drew them.
+        draw::Lines& links = snap.lines.emplace_back();
+        links.layer = draw::Layer::scene;
+        for (std::size_t k = 0; k < s.chain.size(); ++k) {
+          links.points.push_back(s.chain[k].cast<float>());
+          links.points.push_back(s.chain[static_cast<std::size_t>(s.chain_next[k])].cast<float>());
+          links.colors.push_back(kMarkerColor);
+        }
+      }
       // The marker particles are the liquid (16.3.1): drawn in the picture, not as an overlay.
       draw::Points& points = snap.points.emplace_back();
-      points.positions.reserve(s.markers.size());
-      for (const Vec3& x : s.markers) points.positions.push_back(x.cast<float>());
-      points.colors.assign(s.markers.size(), kMarkerColor);
+      const std::vector<Vec3>& markers = s.chain.empty() ? s.markers : s.chain;
+      points.positions.reserve(markers.size());
+      for (const Vec3& x : markers) points.positions.push_back(x.cast<float>());
+      points.colors.assign(markers.size(), kMarkerColor);
       points.size = 3;
       points.layer = draw::Layer::scene;
     }

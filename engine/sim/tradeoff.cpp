@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "liquid/cell_labels.h"
+#include "liquid/surface_chains.h"
 #include "scene/scene_enum_names.h"
 #include "sim/simulation.h"
 
@@ -36,7 +37,7 @@ struct Trajectory {
 };
 
 // A liquid's centre of mass, its reach along the grid's first horizontal axis and its highest
-// point: from its markers, or its height field's columns.
+// point: from its markers, its chains' loops (their centroid), or its height field's columns.
 Trajectory::LiquidSample sample_liquid(const LiquidModel& m, const LiquidState& s, Real volume) {
   Trajectory::LiquidSample out;
   out.volume = volume;
@@ -51,6 +52,14 @@ Trajectory::LiquidSample sample_liquid(const LiquidModel& m, const LiquidState& 
       out.top = std::max(out.top, x[axes.v]);
     }
     if (!s.markers.empty()) out.centre /= static_cast<Real>(s.markers.size());
+    return out;
+  }
+  if (m.def.surface == SurfaceMethod::chains) {
+    (void)chains_area(m, s.chain, s.chain_next, &out.centre);
+    for (const Vec3& x : s.chain) {
+      out.front = std::max(out.front, x[axes.h0]);
+      out.top = std::max(out.top, x[axes.v]);
+    }
     return out;
   }
   const Real bottom = g.origin[axes.v];
@@ -349,9 +358,10 @@ TradeoffKnobs default_knobs(const Scene& scene, const std::vector<std::string>& 
         notes.push_back(name + " left out: the scene has no liquid");
         continue;
       }
-      bool markers = false;
+      bool markers = false, spaced = false;  // markers carry flip; chains have a spacing too
       for (const LiquidDef& liquid : scene.liquids) {
         markers |= liquid.surface == SurfaceMethod::markers;
+        spaced |= liquid.surface != SurfaceMethod::height_field;
       }
       if (name == "liquid_resolution") {
         knobs.liquid_resolution = {0.5, 1.0, 2.0};
@@ -381,10 +391,10 @@ TradeoffKnobs default_knobs(const Scene& scene, const std::vector<std::string>& 
         }
       } else if (name == "epsilon") {
         knobs.epsilon = {1e-3, 1e-4, 1e-5};
-      } else if (markers) {
+      } else if (spaced) {
         knobs.markers_per_axis = {1, 2, 3};
       } else {
-        notes.push_back("markers left out: no liquid has markers");
+        notes.push_back("markers left out: no liquid has markers or chains");
       }
     } else {
       throw Error("", "--knobs",
