@@ -29,11 +29,16 @@ void set_wall_velocities(const LiquidModel& model, const std::vector<CellFlag>& 
 void set_surface_velocities(const LiquidModel& model, const std::vector<CellFlag>& flags,
                             MacField& field);
 
+// The extrapolation's scratch: a mark per face and the faces the last layer set.
+struct ExtrapolationWork {
+  std::vector<std::uint8_t> known;  // one per grid cell (face index)
+  std::vector<int> frontier, added;
+};
+
 // Velocities of faces with no liquid on either side, from their neighbours', `layers` deep: what
 // a marker just outside the liquid and a backtrace that leaves it read.
 void extrapolate_velocities(const LiquidModel& model, const std::vector<CellFlag>& flags,
-                            int layers, std::vector<std::uint8_t>& known,
-                            std::vector<std::uint8_t>& next_known, MacField& field);
+                            int layers, ExtrapolationWork& work, MacField& field);
 
 // The divergence of (16.4) in cell c, sum_a (u_a+ - u_a-) / h_a [1/s] (minus D of (16.5)).
 inline Real cell_divergence(const MacGrid& g, const MacField& f, int c) {

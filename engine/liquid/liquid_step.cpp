@@ -121,7 +121,7 @@ void liquid_substep(const LiquidModel& model, const LiquidInputs& inputs, Real d
   if (carried) markers_to_grid(model, state.markers, state.marker_velocity, ws, field);
   set_wall_velocities(model, ws.flags, ws.inflow_velocity, ws.moving, field);
   set_surface_velocities(model, ws.flags, field);
-  extrapolate_velocities(model, ws.flags, kExtrapolationLayers, ws.known, ws.next_known, field);
+  extrapolate_velocities(model, ws.flags, kExtrapolationLayers, ws.extrapolation, field);
   for (int a = 0; a < 3; ++a) ws.previous.u[a] = field.u[a];
   // Chains drift in area through the interpolated field (3.5% in 4 s of a dam break,
   // tests/test_liquid_chains.cpp): the liquid expands or contracts uniformly by the knob's share
@@ -158,7 +158,7 @@ void liquid_substep(const LiquidModel& model, const LiquidInputs& inputs, Real d
   // 7: the Surface cells' velocities again, and what lies beyond them.
   set_surface_velocities(model, ws.flags, field);
   set_wall_velocities(model, ws.flags, ws.inflow_velocity, ws.moving, field);
-  extrapolate_velocities(model, ws.flags, kExtrapolationLayers, ws.known, ws.next_known, field);
+  extrapolate_velocities(model, ws.flags, kExtrapolationLayers, ws.extrapolation, field);
   // 8: the surface.
   if (model.def.surface == SurfaceMethod::height_field) {
     advance_height_field(model, field, dt, state, ws);

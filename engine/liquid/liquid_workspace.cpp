@@ -13,8 +13,9 @@ void size_liquid_workspace(const LiquidModel& model, LiquidWorkspace& ws) {
   for (auto& w : ws.transfer_weight) {
     w.assign(model.def.advection == LiquidAdvection::flip ? n : 0, 0.0);
   }
-  ws.known.assign(n, 0);
-  ws.next_known.assign(n, 0);
+  ws.extrapolation.known.assign(n, 0);
+  ws.extrapolation.frontier.clear();
+  ws.extrapolation.added.clear();
   ws.cell_of_row.clear();
   ws.cell_of_row.reserve(static_cast<std::size_t>(model.grid.interior_cells()));
   ws.diag.assign(n, 0.0);

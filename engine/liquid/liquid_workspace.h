@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "liquid/boundary_conditions.h"
 #include "liquid/liquid_model.h"
 #include "liquid/moving_solids.h"
 #include "liquid/pressure_multigrid.h"
@@ -19,8 +20,7 @@ struct LiquidWorkspace {
   MacField previous;            // the velocities at the substep's start (advection reads them)
   // Advection flip: the markers' weights on each face as their velocities are spread to the grid.
   std::vector<Real> transfer_weight[3];
-  std::vector<std::uint8_t> known;  // faces whose velocity the extrapolation may read
-  std::vector<std::uint8_t> next_known;
+  ExtrapolationWork extrapolation;  // faces whose velocity the extrapolation may read
   // The pressure system A dp = D on the Full cells (liquid/pressure_system.h), per cell.
   std::vector<int> cell_of_row;              // the Full cells, in index order
   std::vector<Real> diag;                    // A's diagonal

@@ -74,21 +74,27 @@ struct MacField {
 // at fractions frac (clamped to the grid; a 2D grid's thin axis has fraction 0). Inline, with the
 // blend below: the advection's and the markers' inner loop (40% of a 32^3 dam break's time when
 // they were calls into mac_grid.cpp, `perf record pbm simulate`).
+// The sample index and fraction along axis a of a point g cells from the origin (already offset
+// so the component's samples sit at integers), clamped to the samples there are.
+inline void stencil_axis(const MacGrid& grid, int a, bool own_axis, Real g, int& base, Real& frac) {
+  // Faces 0..n along the axis, cells 0..n+1 across it (the ghosts carry the walls' values).
+  const int last = own_axis ? grid.n[a] : grid.n[a] + 1;
+  // A NaN position (a state the guard will reject) reads the first sample, not past the array.
+  g = g >= 0 ? std::min(g, static_cast<Real>(last)) : 0.0;
+  int b = static_cast<int>(g);
+  if (b >= last) b = last - 1;
+  if (last == 0) b = 0;
+  base = b;
+  frac = last == 0 ? 0.0 : g - b;
+}
+
 inline void component_stencil(const MacGrid& grid, int axis, const Vec3& x, int (&base)[3],
                               Real (&frac)[3]) {
   // Grid coordinates in which the component's samples sit at integers: the faces of axis `axis`
   // at i * h (index i), the other axes' samples at the cells' centres (index j, centre j - 1/2).
   for (int a = 0; a < 3; ++a) {
-    Real g = (x[a] - grid.origin[a]) / grid.h[a] + (a == axis ? 0.0 : 0.5);
-    // Faces 0..n along the axis, cells 0..n+1 across it (the ghosts carry the walls' values).
-    const int last = a == axis ? grid.n[a] : grid.n[a] + 1;
-    // A NaN position (a state the guard will reject) reads the first sample, not past the array.
-    g = g >= 0 ? std::min(g, static_cast<Real>(last)) : 0.0;
-    int b = static_cast<int>(g);
-    if (b >= last) b = last - 1;
-    if (last == 0) b = 0;
-    base[a] = b;
-    frac[a] = last == 0 ? 0.0 : g - b;
+    const Real g = (x[a] - grid.origin[a]) / grid.h[a] + (a == axis ? 0.0 : 0.5);
+    stencil_axis(grid, a, a == axis, g, base[a], frac[a]);
   }
 }
 
@@ -122,11 +128,24 @@ inline Real interpolate_component(const MacGrid& grid, const std::vector<Real>& 
 
 // The velocity at a world point: each component interpolated trilinearly from the faces that
 // carry it (the area weighting of fig. 16.3, volume weighting in 3D). Points outside the domain
-// are clamped to it.
+// are clamped to it. The component along `skip` (a 2D grid's thin axis, which carries none; -1:
+// every component) is left at 0. The point's grid coordinates are divided out once for the
+// three components (the same values component_stencil computes: a third of its divisions).
 inline Vec3 interpolate_velocity(const MacGrid& grid, const std::vector<Real> (&u)[3],
-                                 const Vec3& x) {
-  return {interpolate_component(grid, u[0], 0, x), interpolate_component(grid, u[1], 1, x),
-          interpolate_component(grid, u[2], 2, x)};
+                                 const Vec3& x, int skip = -1) {
+  Real cells[3];
+  for (int a = 0; a < 3; ++a) cells[a] = (x[a] - grid.origin[a]) / grid.h[a];
+  Vec3 v = Vec3::Zero();
+  for (int c = 0; c < 3; ++c) {
+    if (c == skip) continue;
+    int base[3];
+    Real frac[3];
+    for (int a = 0; a < 3; ++a) {
+      stencil_axis(grid, a, a == c, cells[a] + (a == c ? 0.0 : 0.5), base[a], frac[a]);
+    }
+    v[c] = blend_trilinear(grid, u[c], base, frac);
+  }
+  return v;
 }
 
 }  // namespace pbm

@@ -48,6 +48,26 @@ Vec3 face_position(const MacGrid& g, int a, int i, int j, int k) {
   return x;
 }
 
+// The velocity at face f of axis a: its own component exactly, each other one the mean of the
+// four faces around it (what the trilinear blend gives there, without its 8-sample stencils:
+// the backtrace's first stage was 3 of its 7 blends), zero along a 2D grid's thin axis.
+Vec3 face_velocity(const MacGrid& g, const std::vector<Real> (&u)[3], int a, int f, int thin) {
+  const auto s = [](int i) { return static_cast<std::size_t>(i); };
+  Vec3 v = Vec3::Zero();
+  const int ea = g.stride(a);
+  for (int b = 0; b < 3; ++b) {
+    if (b == thin) continue;
+    if (b == a) {
+      v[b] = u[a][s(f)];
+      continue;
+    }
+    const int eb = g.stride(b);
+    const std::vector<Real>& ub = u[b];
+    v[b] = 0.25 * ((ub[s(f - eb)] + ub[s(f)]) + (ub[s(f + ea - eb)] + ub[s(f + ea)]));
+  }
+  return v;
+}
+
 }  // namespace
 
 void update_momentum(const LiquidModel& model, const MomentumInput& in, MacField& out) {
@@ -81,8 +101,8 @@ void update_momentum(const LiquidModel& model, const MomentumInput& in, MacField
           } else {
             // Backtrace by the midpoint rule through the substep's starting field.
             const Vec3 x = face_position(g, a, i, j, k);
-            const Vec3 v1 = interpolate_velocity(g, in.previous.u, x);
-            const Vec3 v2 = interpolate_velocity(g, in.previous.u, x - 0.5 * dt * v1);
+            const Vec3 v1 = face_velocity(g, in.previous.u, a, f, thin);
+            const Vec3 v2 = interpolate_velocity(g, in.previous.u, x - 0.5 * dt * v1, thin);
             convected = interpolate_component(g, prev, a, x - dt * v2);
           }
           const Real grad_p = (in.pressure[static_cast<std::size_t>(f + ea)] - in.pressure[fs]) /

@@ -96,24 +96,6 @@ AxisStencil axis_stencil(int i, bool halve) {
   return {{parent, side}, {0.75, 0.25}, 2};
 }
 
-// One Gauss-Seidel update of cell c: x_c = (b_c + sum over unknown nb of x_nb / h_a^2) / diag,
-// diag summing 1/h_a^2 over the faces not shared with a Neumann cell.
-void relax_cell(MultigridLevel& lv, const Real (&w)[3], const int (&e)[3], int c) {
-  const std::uint8_t* type = lv.type.data();
-  Real* x = lv.x.data();
-  Real diag = 0, sum = lv.b[at(c)];
-  for (int a = 0; a < 3; ++a) {
-    for (const int nb : {c - e[a], c + e[a]}) {
-      const std::uint8_t t = type[nb];
-      if (t == kNeumann) continue;
-      diag += w[a];
-      if (t == kUnknown) sum += w[a] * x[nb];
-    }
-  }
-  // An unknown cell walled in on all sides has a zero row; it keeps x = 0.
-  x[c] = diag > 0 ? sum / diag : 0.0;
-}
-
 // Whether a face neighbour of c is Dirichlet or Neumann.
 bool beside_boundary(const MultigridLevel& lv, const int (&e)[3], int c) {
   for (int a = 0; a < 3; ++a) {
@@ -122,24 +104,66 @@ bool beside_boundary(const MultigridLevel& lv, const int (&e)[3], int c) {
   return false;
 }
 
-// Updates the unknown cells of one colour ((i + j + k) mod 2), all of them or only those beside a
-// boundary. Within a colour the updates are independent (the 7-point stencil couples only the
-// other colour), so the order inside a half-sweep does not matter for symmetry.
-void relax_colour(MultigridLevel& lv, int colour, bool boundary_only) {
+// The level's diagonal and its cells of each colour from its types (no allocation: the lists
+// are reserved for every interior cell by size_multigrid).
+void index_level(MultigridLevel& lv) {
   const MacGrid& g = lv.grid;
   const Real w[3] = {1 / (g.h.x() * g.h.x()), 1 / (g.h.y() * g.h.y()), 1 / (g.h.z() * g.h.z())};
   const int e[3] = {g.sx, g.sy, g.sz};
+  for (int colour = 0; colour < 2; ++colour) {
+    lv.unknown[colour].clear();
+    lv.boundary[colour].clear();
+  }
   for (int k = 1; k <= g.n.z(); ++k) {
     for (int j = 1; j <= g.n.y(); ++j) {
-      const int i0 = ((1 + j + k) & 1) == colour ? 1 : 2;
-      for (int i = i0; i <= g.n.x(); i += 2) {
+      for (int i = 1; i <= g.n.x(); ++i) {
         const int c = g.index(i, j, k);
         if (lv.type[at(c)] != kUnknown) continue;
-        if (boundary_only && !beside_boundary(lv, e, c)) continue;
-        relax_cell(lv, w, e, c);
+        Real diag = 0;
+        for (int a = 0; a < 3; ++a) {
+          for (const int nb : {c - e[a], c + e[a]}) {
+            if (lv.type[at(nb)] != kNeumann) diag += w[a];
+          }
+        }
+        lv.diag[at(c)] = diag;
+        const int colour = (i + j + k) & 1;
+        lv.unknown[colour].push_back(c);
+        if (beside_boundary(lv, e, c)) lv.boundary[colour].push_back(c);
       }
     }
   }
+}
+
+// Gauss-Seidel updates of the cells listed: x_c = (b_c + sum over unknown nb of x_nb / h_a^2) /
+// diag_c. Every cell that is not unknown holds x = 0 (each level's x starts at 0 and only
+// unknown cells are written), so the sum runs over all six neighbours without a branch: the
+// same sum, term for term, as over the unknown ones (the type tests and the diagonal's
+// recomputation per update were most of the smoother's time, `perf record pbm simulate`).
+// Within a colour the updates are independent (the 7-point stencil couples only the other
+// colour), so the order inside a half-sweep does not matter for symmetry.
+void relax_cells(MultigridLevel& lv, const std::vector<int>& cells) {
+  const MacGrid& g = lv.grid;
+  const Real w[3] = {1 / (g.h.x() * g.h.x()), 1 / (g.h.y() * g.h.y()), 1 / (g.h.z() * g.h.z())};
+  const int sx = g.sx, sy = g.sy, sz = g.sz;
+  Real* x = lv.x.data();
+  const Real* b = lv.b.data();
+  const Real* diag = lv.diag.data();
+  for (const int c : cells) {
+    Real sum = b[c];
+    sum += w[0] * x[c - sx];
+    sum += w[0] * x[c + sx];
+    sum += w[1] * x[c - sy];
+    sum += w[1] * x[c + sy];
+    sum += w[2] * x[c - sz];
+    sum += w[2] * x[c + sz];
+    // An unknown cell walled in on all sides has a zero row; it keeps x = 0.
+    x[c] = diag[c] > 0 ? sum / diag[c] : 0.0;
+  }
+}
+
+// Updates the unknown cells of one colour, all of them or only those beside a boundary.
+void relax_colour(MultigridLevel& lv, int colour, bool boundary_only) {
+  relax_cells(lv, boundary_only ? lv.boundary[colour] : lv.unknown[colour]);
 }
 
 // The smoother S (red then black, all cells, then the boundary cells) and its adjoint S^T, the
@@ -251,6 +275,12 @@ void size_multigrid(const MacGrid& grid, MultigridHierarchy& mg) {
     lv.x.assign(cells, 0.0);
     lv.b.assign(cells, 0.0);
     lv.r.assign(cells, 0.0);
+    lv.diag.assign(cells, 0.0);
+    const auto interior = static_cast<std::size_t>(g.interior_cells());
+    for (int colour = 0; colour < 2; ++colour) {
+      lv.unknown[colour].reserve(interior / 2 + 1);
+      lv.boundary[colour].reserve(interior / 2 + 1);
+    }
     bool more = false;
     for (int a = 0; a < 3; ++a) more = more || g.n[a] > kCoarsestCells;
     if (!more) break;
@@ -323,6 +353,7 @@ void build_multigrid(const std::vector<CellFlag>& flags, MultigridHierarchy& mg)
       }
     }
   }
+  for (MultigridLevel& lv : mg.levels) index_level(lv);
 }
 
 void apply_multigrid(MultigridHierarchy& mg, const std::vector<Real>& r, std::vector<Real>& z) {

@@ -19,6 +19,11 @@ struct MultigridLevel {
   MacGrid grid;                    // this level's cells (with a ghost layer)
   std::vector<std::uint8_t> type;  // per cell: 0 unknown, 1 Dirichlet, 2 Neumann (no cell)
   std::vector<Real> x, b, r;       // per cell
+  // From the types, for the smoother: each unknown cell's diagonal (sum of 1/h_a^2 over its
+  // faces not shared with a Neumann cell), and the unknown cells of each colour ((i + j + k) mod
+  // 2), all of them and those beside a Dirichlet or Neumann cell, in index order.
+  std::vector<Real> diag;
+  std::vector<int> unknown[2], boundary[2];
 };
 
 struct MultigridHierarchy {
