@@ -205,23 +205,31 @@ Real sloshing_period(int cells, SurfaceMethod surface) {
   return (crossings.back() - crossings.front()) / (crossings.size() - 1);
 }
 
+// The refinement: 16, 32 and 64 cells across. Markers: 1.2223, 1.2007, 1.1910 s against
+// 1.1818 s (+3.4%, +1.6%, +0.8%: first order, halving at each refinement). The height field:
+// 1.1859, 1.2003, 1.1951 s (+0.3%, +1.6%, +1.1%), not closer at the finer grids but changing
+// less at each refinement (0.014 s, then 0.005 s). Its coarse grids are sensitive to where the
+// surface sits in its cells: a wave of less than a cell (a = 0.01 m) runs -10%, -2.4%, 0.0% at
+// 16, 32, 64 cells (the book's Surface cells hold the atmosphere's pressure at their centres, so
+// the liquid in a Surface cell's lower half feels no horizontal pressure gradient).
 TEST(LiquidSolver, SloshingPeriodApproachesLinearWaveTheoryUnderRefinement) {
   const Real k = M_PI, depth = 0.5;
   const Real expected = 2 * M_PI / std::sqrt(kG * k * std::tanh(k * depth));
-  const Real coarse = sloshing_period(16, SurfaceMethod::markers);
-  const Real fine = sloshing_period(32, SurfaceMethod::markers);
-  // The height field's period is within 2% at both (1.186 s, 1.200 s) but not closer at the
-  // finer grid: asserted within the 5% only.
-  const Real coarse_height = sloshing_period(16, SurfaceMethod::height_field);
-  const Real fine_height = sloshing_period(32, SurfaceMethod::height_field);
-  std::printf("height field: 16 cells %.4f s, 32 cells %.4f s\n", coarse_height, fine_height);
-  EXPECT_NEAR(coarse_height, expected, 0.05 * expected);
-  EXPECT_NEAR(fine_height, expected, 0.05 * expected);
-  std::printf("sloshing period: theory %.4f s, 16 cells %.4f s, 32 cells %.4f s\n", expected,
-              coarse, fine);
-  EXPECT_NEAR(coarse, expected, 0.05 * expected);
-  EXPECT_NEAR(fine, expected, 0.05 * expected);
-  EXPECT_LT(std::abs(fine - expected), std::abs(coarse - expected));
+  const int cells[3] = {16, 32, 64};
+  Real markers[3], height[3];
+  for (int r = 0; r < 3; ++r) {
+    markers[r] = sloshing_period(cells[r], SurfaceMethod::markers);
+    height[r] = sloshing_period(cells[r], SurfaceMethod::height_field);
+    std::printf("sloshing period: theory %.4f s, %d cells: markers %.4f s, height field %.4f s\n",
+                expected, cells[r], markers[r], height[r]);
+    EXPECT_NEAR(markers[r], expected, 0.05 * expected) << cells[r];
+    EXPECT_NEAR(height[r], expected, 0.02 * expected) << cells[r];
+  }
+  for (int r = 1; r < 3; ++r) {
+    EXPECT_LT(std::abs(markers[r] - expected), std::abs(markers[r - 1] - expected)) << cells[r];
+  }
+  EXPECT_LT(std::abs(markers[2] - markers[1]), std::abs(markers[1] - markers[0]));
+  EXPECT_LT(std::abs(height[2] - height[1]), std::abs(height[1] - height[0]));
 }
 
 TEST(LiquidSolver, ThreeSolversReachTheSamePressure) {
