@@ -188,6 +188,7 @@ std::string frame_stats_json(const World& world, const FrameStats& s, long frame
                          {"pressure_iterations", st.iterations},
                          {"max_pressure_iterations", st.max_iterations},
                          {"unconverged_solves", st.unconverged},
+                         {"cfl_retries", st.cfl_retries},
                          {"divergence", st.divergence},
                          {"markers_removed", st.removed},
                          {"markers_dropped", st.dropped},

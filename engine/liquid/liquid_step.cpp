@@ -87,7 +87,7 @@ Real liquid_substep_limit(const LiquidModel& model, const LiquidInputs& inputs,
   return dt;
 }
 
-void liquid_substep(const LiquidModel& model, const LiquidInputs& inputs, Real dt,
+Real liquid_substep(const LiquidModel& model, const LiquidInputs& inputs, Real dt,
                     LiquidState& state, LiquidWorkspace& ws, LiquidStepStats& stats) {
   // The driven values at the substep's start (16.6).
   const Real since = state.time - inputs.time;
@@ -123,42 +123,58 @@ void liquid_substep(const LiquidModel& model, const LiquidInputs& inputs, Real d
   set_surface_velocities(model, ws.flags, field);
   extrapolate_velocities(model, ws.flags, kExtrapolationLayers, ws.extrapolation, field);
   for (int a = 0; a < 3; ++a) ws.previous.u[a] = field.u[a];
-  // Chains drift in area through the interpolated field (3.5% in 4 s of a dam break,
-  // tests/test_liquid_chains.cpp): the liquid expands or contracts uniformly by the knob's share
-  // of the drift each substep, a divergence of (A0 - A) / (A dt) restoring all of it.
-  ws.chain_divergence = 0;
-  if (model.def.surface == SurfaceMethod::chains && model.def.volume_correction > 0) {
-    const Real area = chains_area(model, state.chain, state.chain_next);
-    if (area > 0) {
-      ws.chain_divergence = model.def.volume_correction *
-                            std::clamp((state.chain_area - area) / area, -1.0, 1.0) / dt;
+  // Steps 5-7 from the substep's start; redone shorter while the field they make would exceed
+  // the CFL fraction (a 2% margin under it, so a retry is not followed by another at the edge).
+  ws.pressure_start = state.pressure;
+  constexpr int kCflRetries = 4;
+  PressureSolveStats solve;
+  Real rate = 0;  // the fastest face's |u| / h after step 7 [1/s]
+  for (int attempt = 0;; ++attempt) {
+    if (attempt > 0) {
+      for (int a = 0; a < 3; ++a) field.u[a] = ws.previous.u[a];
+      state.pressure = ws.pressure_start;
     }
+    // Chains drift in area through the interpolated field (3.5% in 4 s of a dam break,
+    // tests/test_liquid_chains.cpp): the liquid expands or contracts uniformly by the knob's share
+    // of the drift each substep, a divergence of (A0 - A) / (A dt) restoring all of it.
+    ws.chain_divergence = 0;
+    if (model.def.surface == SurfaceMethod::chains && model.def.volume_correction > 0) {
+      const Real area = chains_area(model, state.chain, state.chain_next);
+      if (area > 0) {
+        ws.chain_divergence = model.def.volume_correction *
+                              std::clamp((state.chain_area - area) / area, -1.0, 1.0) / dt;
+      }
+    }
+    // The system of this substep's labels; its ghost-fluid scales also enter the momentum's
+    // pressure gradient.
+    const bool dirichlet = build_pressure_system(model, dt, ws);
+    // 5: the tentative velocities.
+    update_momentum(model,
+                    MomentumInput{.flags = ws.flags,
+                                  .face_scale = ws.face_scale,
+                                  .previous = ws.previous,
+                                  .pressure = state.pressure,
+                                  .gravity = inputs.gravity,
+                                  .dt = dt},
+                    field);
+    set_wall_velocities(model, ws.flags, ws.inflow_velocity, ws.moving, field);
+    // 6: the pressure iteration.
+    const PressureSolveOptions options{.tolerance = model.def.tolerance,
+                                       .relative = model.def.relative_tolerance,
+                                       .max_iterations = model.def.max_iterations};
+    const WallClock::time_point solve_start = WallClock::now();
+    solve =
+        solve_pressure(model, model.def.solver, dt, dirichlet, options, ws, field, state.pressure);
+    stats.solve_seconds += seconds_since(solve_start);
+    // 7: the Surface cells' velocities again, and what lies beyond them.
+    set_surface_velocities(model, ws.flags, field);
+    set_wall_velocities(model, ws.flags, ws.inflow_velocity, ws.moving, field);
+    extrapolate_velocities(model, ws.flags, kExtrapolationLayers, ws.extrapolation, field);
+    rate = fastest_rate(model, &ws.flags, field);
+    if (attempt == kCflRetries || dt * rate <= model.def.cfl * (1 + 1e-9)) break;
+    dt = 0.98 * model.def.cfl / rate;
+    stats.cfl_retries += 1;
   }
-  // The system of this substep's labels; its ghost-fluid scales also enter the momentum's
-  // pressure gradient.
-  const bool dirichlet = build_pressure_system(model, dt, ws);
-  // 5: the tentative velocities.
-  update_momentum(model,
-                  MomentumInput{.flags = ws.flags,
-                                .face_scale = ws.face_scale,
-                                .previous = ws.previous,
-                                .pressure = state.pressure,
-                                .gravity = inputs.gravity,
-                                .dt = dt},
-                  field);
-  set_wall_velocities(model, ws.flags, ws.inflow_velocity, ws.moving, field);
-  // 6: the pressure iteration.
-  const PressureSolveOptions options{.tolerance = model.def.tolerance,
-                                     .relative = model.def.relative_tolerance,
-                                     .max_iterations = model.def.max_iterations};
-  const WallClock::time_point solve_start = WallClock::now();
-  const PressureSolveStats solve =
-      solve_pressure(model, model.def.solver, dt, dirichlet, options, ws, field, state.pressure);
-  stats.solve_seconds += seconds_since(solve_start);
-  // 7: the Surface cells' velocities again, and what lies beyond them.
-  set_surface_velocities(model, ws.flags, field);
-  set_wall_velocities(model, ws.flags, ws.inflow_velocity, ws.moving, field);
-  extrapolate_velocities(model, ws.flags, kExtrapolationLayers, ws.extrapolation, field);
   // 8: the surface.
   if (model.def.surface == SurfaceMethod::height_field) {
     advance_height_field(model, field, dt, state, ws);
@@ -189,9 +205,10 @@ void liquid_substep(const LiquidModel& model, const LiquidInputs& inputs, Real d
   stats.max_iterations = std::max(stats.max_iterations, solve.iterations);
   stats.unconverged += solve.converged ? 0 : 1;
   stats.divergence = std::max(stats.divergence, solve.divergence);
-  stats.cfl = std::max(stats.cfl, dt * fastest_rate(model, &ws.flags, field));
+  stats.cfl = std::max(stats.cfl, dt * rate);
   stats.dt_min = stats.substeps == 1 ? dt : std::min(stats.dt_min, dt);
   stats.dt_max = std::max(stats.dt_max, dt);
+  return dt;
 }
 
 bool advance_liquid(const LiquidModel& model, const LiquidInputs& inputs, Real t_end,
@@ -209,8 +226,9 @@ bool advance_liquid(const LiquidModel& model, const LiquidInputs& inputs, Real t
     const Real remaining = t_end - state.time;
     const Real n = std::ceil(remaining / limit - 1e-9);
     const Real dt = n <= 1 ? remaining : remaining / n;
-    liquid_substep(model, inputs, dt, state, ws, stats);
-    if (n <= 1) state.time = t_end;  // exactly, whatever the rounding of the sum
+    const Real length = liquid_substep(model, inputs, dt, state, ws, stats);
+    // Exactly, whatever the rounding of the sum (unless the CFL check shortened the substep).
+    if (n <= 1 && length == dt) state.time = t_end;
   }
   state.next_step = liquid_substep_limit(model, inputs, state);
   return true;

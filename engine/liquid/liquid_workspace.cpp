@@ -10,6 +10,7 @@ void size_liquid_workspace(const LiquidModel& model, LiquidWorkspace& ws) {
   ws.fill.assign(n, 0.0);
   ws.count.assign(n, 0);
   ws.previous.resize(model.grid.size);
+  ws.pressure_start.assign(n, 0.0);
   for (auto& w : ws.transfer_weight) {
     w.assign(model.def.advection == LiquidAdvection::flip ? n : 0, 0.0);
   }

@@ -14,10 +14,11 @@
 namespace pbm {
 
 struct LiquidWorkspace {
-  std::vector<CellFlag> flags;  // this substep's labels (16.3)
-  std::vector<Real> fill;       // fraction of a Surface cell the liquid fills, 1 in Full cells
-  std::vector<int> count;       // markers per cell
-  MacField previous;            // the velocities at the substep's start (advection reads them)
+  std::vector<CellFlag> flags;       // this substep's labels (16.3)
+  std::vector<Real> fill;            // fraction of a Surface cell the liquid fills, 1 in Full cells
+  std::vector<int> count;            // markers per cell
+  MacField previous;                 // the velocities at the substep's start (advection reads them)
+  std::vector<Real> pressure_start;  // the pressure at the substep's start (a CFL retry's)
   // Advection flip: the markers' weights on each face as their velocities are spread to the grid.
   std::vector<Real> transfer_weight[3];
   ExtrapolationWork extrapolation;  // faces whose velocity the extrapolation may read
