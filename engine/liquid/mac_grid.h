@@ -70,10 +70,6 @@ struct MacField {
   }
 };
 
-// The 8 samples of component `axis` around world point x: from index base (per axis) to base + 1
-// at fractions frac (clamped to the grid; a 2D grid's thin axis has fraction 0). Inline, with the
-// blend below: the advection's and the markers' inner loop (40% of a 32^3 dam break's time when
-// they were calls into mac_grid.cpp, `perf record pbm simulate`).
 // The sample index and fraction along axis a of a point g cells from the origin (already offset
 // so the component's samples sit at integers), clamped to the samples there are.
 inline void stencil_axis(const MacGrid& grid, int a, bool own_axis, Real g, int& base, Real& frac) {
@@ -88,6 +84,10 @@ inline void stencil_axis(const MacGrid& grid, int a, bool own_axis, Real g, int&
   frac = last == 0 ? 0.0 : g - b;
 }
 
+// The 8 samples of component `axis` around world point x: from index base (per axis) to base + 1
+// at fractions frac (clamped to the grid; a 2D grid's thin axis has fraction 0). Inline, with the
+// blend below: the advection's and the markers' inner loop (40% of a 32^3 dam break's time when
+// they were calls into mac_grid.cpp, `perf record pbm simulate`).
 inline void component_stencil(const MacGrid& grid, int axis, const Vec3& x, int (&base)[3],
                               Real (&frac)[3]) {
   // Grid coordinates in which the component's samples sit at integers: the faces of axis `axis`
